@@ -1,0 +1,54 @@
+"""Anderson acceleration of a fixed-point map x = G(x), as preCICE's IQN-ILS.
+
+From the last iterates x_i and their images g_i = G(x_i), with residuals r_i = g_i - x_i,
+the next iterate is x_{k+1} = g_k - dG c, where c minimises || r_k - dR c || over the
+differences dR, dG of successive residuals and images: a secant (quasi-Newton) model of
+the interface Jacobian built from the history. Columns that make the least-squares
+problem ill-conditioned are dropped (QR filter: a column whose R diagonal is below
+``filter_tolerance`` times its norm adds no new direction). The caller restarts the
+history when the map itself changes (a new contact set).
+"""
+
+import numpy as np
+
+
+class Anderson:
+    def __init__(self, scale, memory=100, filter_tolerance=1e-10, first_relaxation=1.0):
+        self.scale = scale                  # weights making the residual norm meaningful
+        self.memory = memory
+        self.filter_tolerance = filter_tolerance
+        self.first_relaxation = first_relaxation
+        self.reset()
+
+    def reset(self):
+        self._residuals, self._images = [], []
+
+    def step(self, x, g):
+        """Next iterate from the current iterate x and its image g = G(x)."""
+        r = (g - x) * self.scale
+        self._residuals.append(r)
+        self._images.append(g)
+        if len(self._residuals) > self.memory + 1:
+            self._residuals.pop(0)
+            self._images.pop(0)
+        if len(self._residuals) == 1:
+            return x + self.first_relaxation * (g - x)
+        d_residuals = np.diff(np.array(self._residuals), axis=0).T   # newest column last
+        d_images = np.diff(np.array(self._images), axis=0).T
+        keep = self._filter(d_residuals)
+        coefficients, *_ = np.linalg.lstsq(d_residuals[:, keep], r, rcond=None)
+        return g - d_images[:, keep] @ coefficients
+
+    def _filter(self, columns):
+        """Indices of the columns kept, dropping the oldest dependent ones first."""
+        keep = list(range(columns.shape[1]))
+        while keep:
+            # QR with the newest column first, so older near-duplicates are the ones dropped
+            order = keep[::-1]
+            _, r = np.linalg.qr(columns[:, order])
+            norms = np.linalg.norm(columns[:, order], axis=0)
+            weak = np.flatnonzero(np.abs(np.diag(r)) < self.filter_tolerance * norms)
+            if len(weak) == 0:
+                return keep
+            keep.remove(order[weak[0]])
+        return keep

@@ -1,0 +1,106 @@
+"""The three subdomain workers of a run and the files they read.
+
+Omega1 and Omega3 run freefem/body.edp; the coating runs freefem/shell.edp (shell
+model) or freefem/body.edp on its own mesh (2D model). Within a Robin iteration the
+three solves are independent: every request is written before any reply is read, so
+the workers compute at the same time.
+"""
+
+from dataclasses import dataclass
+import os
+
+import numpy as np
+
+from .interface import nodal_quadrature, write_quadrature
+from .mesh import body_mesh, interface_nodes, write_medit
+from .worker import CMD_OUTPUT, CMD_SOLVE, Worker
+
+
+@dataclass(frozen=True)
+class RunFiles:
+    """Inputs written once per run into a private working folder."""
+    upper_mesh: str
+    lower_mesh: str
+    shell_nodes: str
+    contact_points: str
+    bond_points: str
+
+
+def write_inputs(scene, settings, workdir):
+    """Meshes, shell nodes and the interface quadrature; returns paths and quadratures."""
+    nodes = interface_nodes(scene.coating_length, settings.interface_elements)
+    files = RunFiles(*(os.path.join(workdir, name) for name in (
+        "omega1.mesh", "omega3.mesh", "shell_nodes.txt", "s12.txt", "s23.txt")))
+    write_medit(body_mesh(scene, settings, "upper"), files.upper_mesh)
+    write_medit(body_mesh(scene, settings, "lower"), files.lower_mesh)
+    with open(files.shell_nodes, "w") as out:
+        out.write(f"{len(nodes)}\n" + "\n".join(map(repr, nodes.tolist())) + "\n")
+    contact = nodal_quadrature(nodes, scene.gap)
+    bond = nodal_quadrature(nodes)
+    write_quadrature(contact, files.contact_points)
+    write_quadrature(bond, files.bond_points)
+    return files, contact, bond
+
+
+class Subdomains:
+    """Omega1, the coating and Omega3 as persistent FreeFEM workers."""
+
+    def __init__(self, scene, settings, files, workdir, output_dir):
+        self.output_dir = output_dir
+        self.workers = {}
+        try:
+            self.workers["upper"] = Worker("omega1", "body.edp", [
+                "-mesh", files.upper_mesh, "-E", scene.E1, "-nu", scene.nu1,
+                "-stamp", scene.stamp, "-contact", files.contact_points,
+                "-output", os.path.join(output_dir, "omega1")], workdir)
+            self.workers["coating"] = self._coating_worker(scene, settings, files, workdir)
+            self.workers["lower"] = Worker("omega3", "body.edp", [
+                "-mesh", files.lower_mesh, "-E", scene.E3, "-nu", scene.nu3,
+                "-bond", files.bond_points,
+                "-output", os.path.join(output_dir, "omega3")], workdir)
+            self.dofs = {name: worker.wait_ready() for name, worker in self.workers.items()}
+        except BaseException:
+            self.close()
+            raise
+
+    def _coating_worker(self, scene, settings, files, workdir):
+        if settings.model != "shell":
+            raise NotImplementedError("the 2D coating model comes with issue 3")
+        return Worker("coating", "shell.edp", [
+            "-nodes", files.shell_nodes, "-E", scene.E2, "-nu", scene.nu2, "-h2", scene.h2,
+            "-kshear", scene.shear_factor, "-contact", files.contact_points,
+            "-bond", files.bond_points, "-output", os.path.join(self.output_dir, "coating")],
+            workdir)
+
+    def solve(self, data):
+        """One independent solve per subdomain.
+
+        ``data`` maps "upper", "coating", "lower" to the arrays of the request: Robin
+        coefficient and data per interface. Returns the traces
+        ``(upper_n, coating_n, coating_bond, lower_bond)`` and each worker's CPU seconds."""
+        for name, worker in self.workers.items():
+            worker.send(CMD_SOLVE, data[name])
+        upper_n, upper_seconds = self.workers["upper"].receive_arrays(2)
+        coating_n, coating_1, coating_2, coating_seconds = self.workers["coating"].receive_arrays(4)
+        lower_1, lower_2, lower_seconds = self.workers["lower"].receive_arrays(3)
+        seconds = {"upper": upper_seconds[0], "coating": coating_seconds[0],
+                   "lower": lower_seconds[0]}
+        return (upper_n, coating_n, np.array([coating_1, coating_2]),
+                np.array([lower_1, lower_2])), seconds
+
+    def write_outputs(self):
+        """Ask every worker to write its fields (VTU, CSV) and reactions."""
+        for worker in self.workers.values():
+            worker.send(CMD_OUTPUT)
+        for worker in self.workers.values():
+            worker.receive_arrays(0)
+
+    def close(self):
+        for worker in self.workers.values():
+            worker.stop()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()

@@ -1,0 +1,166 @@
+"""Persistent FreeFEM workers that answer requests through FIFOs.
+
+A worker script (freefem/body.edp, freefem/shell.edp) assembles and factorises once,
+replies "ready", then loops: read a request, solve, reply. The driver keeps both FIFOs
+open read-write for the worker's whole life, so that the worker's opens never block
+and a reply can be awaited with a timeout while checking that the worker is alive. A
+worker that dies, or says nothing for ``timeout`` seconds, raises ``WorkerError`` with
+the end of its log.
+"""
+
+import ctypes
+import os
+import select
+import signal
+import subprocess
+import time
+
+import numpy as np
+
+from . import freefem
+
+CMD_STOP, CMD_SOLVE, CMD_OUTPUT = 0, 1, 2   # as in freefem/exchange.idp
+_POLL_SECONDS = 0.05
+
+
+class WorkerError(RuntimeError):
+    """A worker died, timed out or answered something unexpected."""
+
+
+def _die_with_parent():
+    """Runs in the child before exec: get SIGKILL if the driver dies, even by SIGKILL."""
+    PR_SET_PDEATHSIG = 1
+    try:
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    except OSError:
+        pass
+
+
+class Worker:
+    """One FreeFEM process; ``name`` labels its FIFOs and log inside ``workdir``."""
+
+    def __init__(self, name, script, arguments, workdir, timeout=600.0):
+        self.name = name
+        self.timeout = timeout
+        self.request_path = os.path.join(workdir, f"{name}.request")
+        self.reply_path = os.path.join(workdir, f"{name}.reply")
+        self.log_path = os.path.join(workdir, f"{name}.log")
+        self.process = None
+        self._request_fd = self._reply_fd = None
+        command = freefem.command(script, [*arguments, "-request", self.request_path,
+                                           "-reply", self.reply_path])
+        try:
+            os.mkfifo(self.request_path)
+            os.mkfifo(self.reply_path)
+            # O_RDWR keeps a reader and a writer on each FIFO: the worker's opens return
+            # at once, and select() sees a reply only when there is one.
+            self._request_fd = os.open(self.request_path, os.O_RDWR)
+            self._reply_fd = os.open(self.reply_path, os.O_RDWR | os.O_NONBLOCK)
+            with open(self.log_path, "w") as log:
+                self.process = subprocess.Popen(
+                    command, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                    env=freefem.environment(), start_new_session=True,
+                    preexec_fn=_die_with_parent)
+        except BaseException:
+            self.kill()
+            raise
+
+    # -- messages ---------------------------------------------------------------------
+    def wait_ready(self):
+        """Wait for the worker's set-up (assembly, factorisation); return its dof count."""
+        tokens = self._read_reply()
+        if len(tokens) != 2 or tokens[0] != "ready":
+            raise WorkerError(f"worker {self.name} did not start properly: {tokens[:5]}")
+        return int(tokens[1])
+
+    def send(self, command, arrays=()):
+        """Write one request: the command, then each array count-first."""
+        parts = [str(command)]
+        for array in arrays:
+            array = np.asarray(array, dtype=float)
+            parts.append(f"{array.size}\n" + " ".join(map(repr, array.tolist())))
+        self._write(("\n".join(parts) + "\n").encode())
+
+    def receive_arrays(self, count):
+        """Read a reply made of ``count`` count-first arrays."""
+        tokens = self._read_reply()
+        arrays, i = [], 0
+        for _ in range(count):
+            n = int(tokens[i])
+            arrays.append(np.array(tokens[i + 1:i + 1 + n], dtype=float))
+            i += 1 + n
+        if i != len(tokens):
+            raise WorkerError(f"worker {self.name} sent {len(tokens) - i} unexpected values")
+        return arrays
+
+    def request(self, command, arrays, reply_arrays):
+        self.send(command, arrays)
+        return self.receive_arrays(reply_arrays)
+
+    # -- lifetime -----------------------------------------------------------------------
+    def stop(self, grace=5.0):
+        """Ask the worker to exit; kill it if it does not; release the FIFOs."""
+        try:
+            if self.process is not None and self.process.poll() is None:
+                try:
+                    self._write(f"{CMD_STOP}\n".encode(), timeout=grace)
+                    self.process.wait(timeout=grace)
+                except (WorkerError, subprocess.TimeoutExpired, OSError):
+                    pass
+        finally:
+            self.kill()
+
+    def kill(self):
+        """Kill the worker's process group and remove its FIFOs; safe to call twice."""
+        if self.process is not None and self.process.poll() is None:
+            try:
+                os.killpg(self.process.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            self.process.wait()
+        for attribute in ("_request_fd", "_reply_fd"):
+            fd = getattr(self, attribute)
+            if fd is not None:
+                os.close(fd)
+                setattr(self, attribute, None)
+        for path in (self.request_path, self.reply_path):
+            if os.path.exists(path):
+                os.unlink(path)
+
+    # -- low level ----------------------------------------------------------------------
+    def _check_alive(self):
+        code = self.process.poll()
+        if code is not None:
+            raise WorkerError(f"worker {self.name} exited with code {code}:\n"
+                              + freefem.log_tail(self.log_path))
+
+    def _write(self, data, timeout=None):
+        deadline = time.monotonic() + (timeout or self.timeout)
+        view = memoryview(data)
+        while view:
+            self._check_alive()
+            _, writable, _ = select.select([], [self._request_fd], [], _POLL_SECONDS)
+            if writable:
+                written = os.write(self._request_fd, view[:65536])
+                view = view[written:]
+            elif time.monotonic() > deadline:
+                raise WorkerError(f"worker {self.name} stopped reading its requests")
+
+    def _read_reply(self):
+        """Read until the reply's closing word "end"; return the tokens before it."""
+        start = time.monotonic()
+        chunks = []
+        while True:
+            readable, _, _ = select.select([self._reply_fd], [], [], _POLL_SECONDS)
+            if readable:
+                chunks.append(os.read(self._reply_fd, 1 << 20))
+                tail = b"".join(chunks[-2:]).rstrip()
+                if tail.endswith(b"end"):
+                    break
+            else:
+                self._check_alive()
+                if time.monotonic() - start > self.timeout:
+                    raise WorkerError(f"worker {self.name} gave no answer for "
+                                      f"{self.timeout:.0f} s:\n" + freefem.log_tail(self.log_path))
+        tokens = b"".join(chunks).split()
+        return [t.decode() for t in tokens[:-1]]
