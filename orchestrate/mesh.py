@@ -7,7 +7,9 @@ Along the coated part of that face, [0, l2], the mesh has exactly the shell's no
 interface quadrature is exact for the body traces.
 """
 
+from contextlib import contextmanager
 from pathlib import Path
+import signal
 
 import gmsh
 import meshio
@@ -42,8 +44,7 @@ def body_mesh(scene, settings, body):
         face_label, far_label = "Bond", "Clamped"
     interface_size = l2 / elements
 
-    gmsh.initialize(interruptible=False)
-    try:
+    with _gmsh_session():
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.add(body)
         geo = gmsh.model.geo
@@ -82,10 +83,23 @@ def body_mesh(scene, settings, body):
         gmsh.model.addPhysicalGroup(2, [surface], 1, name=body)
         gmsh.model.mesh.generate(2)
         mesh = _to_meshio()
-    finally:
-        gmsh.finalize()
     _snap_to_interface_nodes(mesh.points, y_face, interface_nodes(l2, elements), interface_size)
     return mesh
+
+
+@contextmanager
+def _gmsh_session():
+    """gmsh initialised for one model. gmsh installs its own C-level signal handlers;
+    the driver's (SIGINT, SIGTERM: clean up the workers) are put back afterwards."""
+    handlers = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+    gmsh.initialize(interruptible=False)
+    try:
+        yield
+    finally:
+        gmsh.finalize()
+        for sig, handler in handlers.items():
+            if handler is not None:
+                signal.signal(sig, handler)
 
 
 def _snap_to_interface_nodes(points, y_face, nodes, spacing):

@@ -5,10 +5,12 @@ solves the same discrete problem as the Robin loop (same forms, same interface
 quadrature), which makes it the yardstick of the loop's correctness."""
 
 import os
+import tempfile
 
 import numpy as np
 
 from . import freefem
+from .contact import contact_stress
 
 
 def solve_monolithic(scene, settings, files, workdir):
@@ -36,3 +38,20 @@ def solve_monolithic(scene, settings, files, workdir):
     u1n, w, f1, f2, u31, u32 = arrays
     return {"upper_n": u1n, "coating_n": w, "coating_bond": np.array([f1, f2]),
             "lower_bond": np.array([u31, u32]), "solves": solves}
+
+
+def monolithic_interface(scene, settings):
+    """Monolithic interface displacements and stresses of a scene, in a private folder.
+
+    Returns the traces of ``solve_monolithic`` plus "x1", "sigma_12n" and "sigma_23n"
+    (the penalty laws evaluated on the traces)."""
+    from .subdomains import write_inputs   # meshes and interface points, as for the DDM
+
+    with tempfile.TemporaryDirectory(prefix="monolithic-") as workdir:
+        files, contact, bond = write_inputs(scene, settings, workdir)
+        result = solve_monolithic(scene, settings, files, workdir)
+    result["x1"] = contact.x
+    result["sigma_12n"] = contact_stress(contact.gap, result["upper_n"], result["coating_n"],
+                                         settings.theta)
+    result["sigma_23n"] = (result["coating_bond"][1] - result["lower_bond"][1]) / settings.theta
+    return result

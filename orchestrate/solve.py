@@ -2,7 +2,9 @@
 
 Results of a run in its output folder:
     contact.csv    x1, sigma_n on S12 (sigma_12n / E, compression negative)
-    interface.csv  x1, sigma_n on S23 (sigma_23n / E)
+    interface.csv  x1, sigma_n on S23 (sigma_23n / E), sigma_t
+    traces.csv     x1 and the interface displacements: u1n and w on S12 (outward normals),
+                   (u1, u2) of the coating's bottom and of Omega3's top on S23
     history.csv    one row per Robin iteration
     summary.json   scene, settings, outcome, forces, timings (written last)
     omega1.vtu, omega3.vtu, coating.vtu   displacement fields for ParaView
@@ -93,6 +95,13 @@ def _write_results(scene, settings, layout, state, contact_points, bond_points, 
     """Interface stresses and forces of the converged state; return summary entries."""
     sigma_12n, traction_23 = interface_stresses(layout, state)
     write_csv(os.path.join(out_dir, "contact.csv"), {"x1": contact_points.x, "sigma_n": sigma_12n})
+    write_csv(os.path.join(out_dir, "traces.csv"), {
+        "x1": contact_points.x,
+        "upper_n": layout.get(state, "upper_n"), "coating_n": layout.get(state, "coating_n"),
+        "coating_u1": layout.get(state, "coating_bond")[0],
+        "coating_u2": layout.get(state, "coating_bond")[1],
+        "lower_u1": layout.get(state, "lower_bond")[0],
+        "lower_u2": layout.get(state, "lower_bond")[1]})
     write_csv(os.path.join(out_dir, "interface.csv"),
               {"x1": bond_points.x, "sigma_n": traction_23[1], "sigma_t": traction_23[0]})
     if settings.model == "shell":

@@ -1,0 +1,50 @@
+"""Physics of the default scene (shell model, h2 = b/8, E2 = E), solved by the Robin loop.
+
+- Equilibrium: the total contact force on S12, the total normal force on S23, the stamp's
+  reaction on Omega1 and the clamp's reaction on Omega3 (variationally consistent nodal
+  reactions) are one and the same force.
+- With E2 = E and a thin coating the bodies act as two half-planes of one material: the
+  contact pressure is Hertz-like. Plane-strain Hertz from the run's own total force:
+  gap d = x1^2/(2R) with R = b^2/(2 chi), E* = E/(2(1 - nu^2)), half-width
+  a = sqrt(4 F R/(pi E*)), peak p0 = 2F/(pi a), F the force of the full (symmetric) contact.
+- The penalty's own error is small: halving theta changes the peak contact stress by
+  less than 0.1 %.
+"""
+
+import math
+
+import pytest
+
+from orchestrate.scene import Scene, Settings
+from orchestrate.solve import solve
+
+
+@pytest.fixture(scope="module")
+def default_run(tmp_path_factory):
+    return solve(Scene(), Settings(), tmp_path_factory.mktemp("default"))
+
+
+def test_forces_balance(default_run):
+    force = default_run["contact_force"]
+    assert force > 0
+    for name in ("interface_force", "stamp_reaction", "base_reaction"):
+        assert abs(default_run[name] - force) < 0.01 * force, name
+
+
+def test_contact_pressure_is_hertz_like(default_run):
+    scene = Scene()
+    full_force = 2.0 * default_run["contact_force"]      # the run models half the contact
+    effective_modulus = scene.E1 / (2.0 * (1.0 - scene.nu1 ** 2))
+    half_width = math.sqrt(4.0 * full_force * scene.hertz_radius / (math.pi * effective_modulus))
+    peak = 2.0 * full_force / (math.pi * half_width)
+    element = scene.coating_length / Settings().interface_elements
+    assert abs(-default_run["peak_contact_stress"] - peak) < 0.03 * peak
+    assert abs(default_run["contact_half_width"] - half_width) < element
+
+
+def test_halving_the_penalty_changes_the_peak_stress_by_less_than_a_thousandth(
+        default_run, tmp_path):
+    settings = Settings()
+    halved = solve(Scene(), Settings(theta=settings.theta / 2), tmp_path)
+    change = abs(halved["peak_contact_stress"] / default_run["peak_contact_stress"] - 1.0)
+    assert change < 1e-3
