@@ -8,6 +8,7 @@ the workers compute at the same time.
 
 from dataclasses import dataclass
 import os
+import time
 
 import numpy as np
 
@@ -77,14 +78,17 @@ class Subdomains:
 
         ``data`` maps "upper", "coating", "lower" to the arrays of the request: Robin
         coefficient and data per interface. Returns the traces
-        ``(upper_n, coating_n, coating_bond, lower_bond)`` and each worker's CPU seconds."""
+        ``(upper_n, coating_n, coating_bond, lower_bond)`` and the timings: each worker's
+        CPU seconds and "wait", the driver's wall time from the first request sent to the
+        last reply read."""
+        start = time.perf_counter()
         for name, worker in self.workers.items():
             worker.send(CMD_SOLVE, data[name])
         upper_n, upper_seconds = self.workers["upper"].receive_arrays(2)
         coating_n, coating_1, coating_2, coating_seconds = self.workers["coating"].receive_arrays(4)
         lower_1, lower_2, lower_seconds = self.workers["lower"].receive_arrays(3)
         seconds = {"upper": upper_seconds[0], "coating": coating_seconds[0],
-                   "lower": lower_seconds[0]}
+                   "lower": lower_seconds[0], "wait": time.perf_counter() - start}
         return (upper_n, coating_n, np.array([coating_1, coating_2]),
                 np.array([lower_1, lower_2])), seconds
 
