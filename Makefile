@@ -1,4 +1,5 @@
 # Contact of elastic bodies with a thin partial coating: Robin DDM in FreeFEM + Python.
+#   make fig3 fig4 fig5   the paper's figures (results/figN.png, .pdf, _data.csv)
 #   make run     solve the default scene (shell model, h2 = b/8, E2 = E) into results/default
 #   make test    run the tests
 # Both install what they need first (FreeFEM from Debian, a pinned Python venv).
@@ -7,7 +8,35 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test clean
+.PHONY: setup run test clean figures fig3 fig4 fig5
+
+# ---- The paper's figures: one run folder per scene, shared between figures ----------
+# results/runs/MODEL-h2_H-E2_E/summary.json is a run of the coating model MODEL with
+# h2 = H b and E2 = E E; summary.json is written last, so it marks a finished run.
+run = results/runs/$(1)-h2_$(2)-E2_$(3)/summary.json
+runs = $(foreach m,$(1),$(foreach h,$(2),$(foreach e,$(3),$(call run,$(m),$(h),$(e)))))
+FIG3_RUNS := $(call runs,shell elastic,1 0.125,5 1)
+FIG4_RUNS := $(call runs,shell elastic,1 0.5 0.25 0.125 0.0625,5 1)
+FIG5_RUNS := $(call runs,elastic,1 0.5 0.25 0.125,0.2 1 5)
+
+figures: fig3 fig4 fig5
+fig3: results/fig3.png
+fig4: results/fig4.png
+fig5: results/fig5.png
+
+results/fig3.png: $(FIG3_RUNS) | setup
+	$(PYTHON) -m orchestrate.figures fig3 $(FIG3_RUNS)
+results/fig4.png: $(FIG4_RUNS) | setup
+	$(PYTHON) -m orchestrate.figures fig4 $(FIG4_RUNS)
+results/fig5.png: $(FIG5_RUNS) | setup
+	$(PYTHON) -m orchestrate.figures fig5 $(FIG5_RUNS)
+
+scene_word = $(word $(2),$(subst -, ,$(patsubst results/runs/%/summary.json,%,$(1))))
+results/runs/%/summary.json: | setup
+	$(PYTHON) -m orchestrate solve --quiet --out $(@D) \
+	  --model $(call scene_word,$@,1) \
+	  --h2 $(patsubst h2_%,%,$(call scene_word,$@,2)) \
+	  --E2 $(patsubst E2_%,%,$(call scene_word,$@,3))
 
 setup: .venv/.installed .freefem-installed
 

@@ -1,15 +1,17 @@
-"""Meshes of the bodies, built with gmsh and written for FreeFEM with meshio.
+"""Meshes of the bodies and of the 2D coating, written for FreeFEM with meshio.
 
-Omega1 and Omega3 are rectangles meshed with triangles graded towards the face that
-touches the coating, as in the paper (about 1372 and 1349 triangles at mesh level 1).
-Along the coated part of that face, [0, l2], the mesh has exactly the shell's nodes:
-``interface_elements`` equal edges, so that every shell element is one body edge and the
-interface quadrature is exact for the body traces.
+Omega1 and Omega3 are rectangles meshed by gmsh with triangles graded towards the face
+that touches the coating, as in the paper (about 1372 and 1349 triangles at mesh level
+1). Along the coated part of that face, [0, l2], the mesh has exactly the interface
+nodes: ``interface_elements`` equal edges, each of them one shell element, or one column
+of the 2D coating's structured mesh.
 """
 
 from contextlib import contextmanager
 from pathlib import Path
 import signal
+
+import math
 
 import gmsh
 import meshio
@@ -24,24 +26,77 @@ GROWTH = 0.115
 MAX_SIZE = 0.5
 
 
+# The 2D coating: one layer of cells per b/8 of height, as the paper's 64 ... 512
+# triangles for h2 = b/8 ... b, and at least one layer; a cell at most MAX_ASPECT times
+# as wide as it is high, so a thin coating refines the interface, and with it the
+# bodies' coated faces (the cost the paper alludes to for h2 <= b/16).
+COATING_LAYER_HEIGHT = 0.125
+MAX_ASPECT = 2.0
+
+
 def interface_nodes(coating_length, elements):
     """Node abscissae of the shell and of the bodies on S12 and S32."""
     return np.linspace(0.0, coating_length, elements + 1)
 
 
+def coating_layers(scene, settings):
+    """Layers of cells across the 2D coating."""
+    return settings.mesh_level * max(1, round(scene.h2 / COATING_LAYER_HEIGHT))
+
+
+def interface_elements(scene, settings):
+    """Elements along S12 and S23: 32 per mesh level, more for a thin 2D coating."""
+    elements = settings.shell_elements * settings.mesh_level
+    if settings.model == "elastic":
+        layer_height = scene.h2 / coating_layers(scene, settings)
+        elements = max(elements, math.ceil(scene.coating_length / (MAX_ASPECT * layer_height)))
+    return elements
+
+
+def coating_mesh(scene, settings):
+    """Structured triangle mesh of the 2D coating [0, l2] x [h, h + h2], two triangles per
+    cell; its top (Contact) and bottom (Bond) carry exactly the interface nodes."""
+    columns = interface_elements(scene, settings)
+    layers = coating_layers(scene, settings)
+    x = interface_nodes(scene.coating_length, columns)
+    y = scene.height + scene.h2 * np.arange(layers + 1) / layers
+    y[-1] = scene.height + scene.h2          # the contact face exactly where Omega1's is
+    points = np.array([(xi, yj) for yj in y for xi in x])
+    node = lambda i, j: j * (columns + 1) + i  # noqa: E731
+    triangles = []
+    for j in range(layers):
+        for i in range(columns):
+            a, b, c, d = node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)
+            triangles += [(a, b, c), (a, c, d)]
+    edges = {
+        "Bond": [(node(i, 0), node(i + 1, 0)) for i in range(columns)],
+        "Free": [(node(columns, j), node(columns, j + 1)) for j in range(layers)],
+        "Contact": [(node(i + 1, layers), node(i, layers)) for i in range(columns)],
+        "Symmetry": [(node(0, j + 1), node(0, j)) for j in range(layers)],
+    }
+    lines = np.array([edge for name in edges for edge in edges[name]])
+    line_refs = np.concatenate([np.full(len(edges[name]), LABELS[name]) for name in edges])
+    return meshio.Mesh(points, [("line", lines), ("triangle", np.array(triangles))],
+                       cell_data={"medit:ref": [line_refs, np.full(len(triangles), 1)]})
+
+
 def body_mesh(scene, settings, body):
-    """Triangle mesh of Omega1 (``body="upper"``) or Omega3 (``body="lower"``)."""
-    if body not in ("upper", "lower"):
-        raise ValueError(f"body must be 'upper' or 'lower', not {body!r}")
+    """Triangle mesh of Omega1 (``body="upper"``), Omega3 (``"lower"``) or, for the scene
+    without coating, Omega3 grown by h2 and touching Omega1 (``"lower-uncoated"``)."""
+    if body not in ("upper", "lower", "lower-uncoated"):
+        raise ValueError(f"body must be 'upper', 'lower' or 'lower-uncoated', not {body!r}")
     level = settings.mesh_level
-    elements = settings.interface_elements
+    elements = interface_elements(scene, settings)
     l, h, l2 = scene.length, scene.height, scene.coating_length
     if body == "upper":   # Omega1 = [0, l] x [h + h2, 2h + h2]; coated face at the bottom
         y_face, y_far = h + scene.h2, 2 * h + scene.h2
         face_label, far_label = "Contact", "Stamp"
-    else:                 # Omega3 = [0, l] x [0, h]; coated face at the top
+    elif body == "lower":  # Omega3 = [0, l] x [0, h]; coated face at the top
         y_face, y_far = h, 0.0
         face_label, far_label = "Bond", "Clamped"
+    else:                  # [0, l] x [0, h + h2], in contact with Omega1 itself
+        y_face, y_far = h + scene.h2, 0.0
+        face_label, far_label = "Contact", "Clamped"
     interface_size = l2 / elements
 
     with _gmsh_session():

@@ -13,13 +13,15 @@ from . import freefem
 from .contact import contact_stress
 
 
-def solve_monolithic(scene, settings, files, workdir):
+def solve_monolithic(scene, settings, files, workdir, model=None):
     """Interface displacements of the monolithic solution, as the Robin loop's blocks:
-    ``{"upper_n", "coating_n", "coating_bond", "lower_bond"}``, plus ``solves``."""
-    if settings.model != "shell":
-        raise ValueError("the monolithic solve of the 2D coating model comes with issue 3")
+    ``{"upper_n", "coating_n", "coating_bond", "lower_bond"}``, plus ``solves``.
+
+    ``model`` overrides settings.model; "none" solves the scene without coating (then
+    ``files.lower_mesh`` must touch Omega1, and "coating_n" is its top's displacement)."""
     output = os.path.join(workdir, "monolithic_traces.txt")
     freefem.run_script("monolithic.edp", [
+        "-model", model or settings.model, "-coating", files.coating_mesh,
         "-upper", files.upper_mesh, "-lower", files.lower_mesh, "-nodes", files.shell_nodes,
         "-contact", files.contact_points, "-bond", files.bond_points,
         "-E1", scene.E1, "-nu1", scene.nu1, "-E2", scene.E2, "-nu2", scene.nu2,
@@ -40,16 +42,21 @@ def solve_monolithic(scene, settings, files, workdir):
             "lower_bond": np.array([u31, u32]), "solves": solves}
 
 
-def monolithic_interface(scene, settings):
+def monolithic_interface(scene, settings, coated=True):
     """Monolithic interface displacements and stresses of a scene, in a private folder.
 
     Returns the traces of ``solve_monolithic`` plus "x1", "sigma_12n" and "sigma_23n"
-    (the penalty laws evaluated on the traces)."""
+    (the penalty laws evaluated on the traces). ``coated=False`` solves the same scene
+    without its coating: Omega3 grown by h2 touches Omega1 on the same contact points."""
+    from .mesh import body_mesh, write_medit
     from .subdomains import write_inputs   # meshes and interface points, as for the DDM
 
     with tempfile.TemporaryDirectory(prefix="monolithic-") as workdir:
         files, contact, bond = write_inputs(scene, settings, workdir)
-        result = solve_monolithic(scene, settings, files, workdir)
+        if not coated:
+            write_medit(body_mesh(scene, settings, "lower-uncoated"), files.lower_mesh)
+        result = solve_monolithic(scene, settings, files, workdir,
+                                  model=None if coated else "none")
     result["x1"] = contact.x
     result["sigma_12n"] = contact_stress(contact.gap, result["upper_n"], result["coating_n"],
                                          settings.theta)

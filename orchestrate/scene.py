@@ -119,11 +119,6 @@ class Settings:
             return self.robin
         return 1.0 / self.theta if self.method == "paper" else DEFAULT_ROBIN
 
-    @property
-    def interface_elements(self):
-        """Elements of the shell, and edges of the body meshes, along S12 and S23."""
-        return self.shell_elements * self.mesh_level
-
 
 def to_dict(obj):
     return asdict(obj)

@@ -13,7 +13,7 @@ import time
 import numpy as np
 
 from .interface import nodal_quadrature, write_quadrature
-from .mesh import body_mesh, interface_nodes, write_medit
+from .mesh import body_mesh, coating_mesh, interface_elements, interface_nodes, write_medit
 from .worker import CMD_OUTPUT, CMD_SOLVE, Worker
 
 
@@ -22,6 +22,7 @@ class RunFiles:
     """Inputs written once per run into a private working folder."""
     upper_mesh: str
     lower_mesh: str
+    coating_mesh: str     # 2D coating model only
     shell_nodes: str
     contact_points: str
     bond_points: str
@@ -29,11 +30,13 @@ class RunFiles:
 
 def write_inputs(scene, settings, workdir):
     """Meshes, shell nodes and the interface quadrature; returns paths and quadratures."""
-    nodes = interface_nodes(scene.coating_length, settings.interface_elements)
+    nodes = interface_nodes(scene.coating_length, interface_elements(scene, settings))
     files = RunFiles(*(os.path.join(workdir, name) for name in (
-        "omega1.mesh", "omega3.mesh", "shell_nodes.txt", "s12.txt", "s23.txt")))
+        "omega1.mesh", "omega3.mesh", "coating.mesh", "shell_nodes.txt", "s12.txt", "s23.txt")))
     write_medit(body_mesh(scene, settings, "upper"), files.upper_mesh)
     write_medit(body_mesh(scene, settings, "lower"), files.lower_mesh)
+    if settings.model == "elastic":
+        write_medit(coating_mesh(scene, settings), files.coating_mesh)
     with open(files.shell_nodes, "w") as out:
         out.write(f"{len(nodes)}\n" + "\n".join(map(repr, nodes.tolist())) + "\n")
     contact = nodal_quadrature(nodes, scene.gap)
@@ -65,13 +68,16 @@ class Subdomains:
             raise
 
     def _coating_worker(self, scene, settings, files, workdir):
-        if settings.model != "shell":
-            raise NotImplementedError("the 2D coating model comes with issue 3")
+        output = os.path.join(self.output_dir, "coating")
+        if settings.model == "elastic":     # (25): the coating as a P2 body, Robin on both faces
+            return Worker("coating", "body.edp", [
+                "-mesh", files.coating_mesh, "-E", scene.E2, "-nu", scene.nu2,
+                "-contact", files.contact_points, "-bond", files.bond_points,
+                "-output", output], workdir)
         return Worker("coating", "shell.edp", [
             "-nodes", files.shell_nodes, "-E", scene.E2, "-nu", scene.nu2, "-h2", scene.h2,
             "-kshear", scene.shear_factor, "-contact", files.contact_points,
-            "-bond", files.bond_points, "-output", os.path.join(self.output_dir, "coating")],
-            workdir)
+            "-bond", files.bond_points, "-output", output], workdir)
 
     def solve(self, data):
         """One independent solve per subdomain.

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from orchestrate.labels import LABELS
-from orchestrate.mesh import body_mesh, interface_nodes, write_medit
+from orchestrate.mesh import body_mesh, interface_elements, interface_nodes, write_medit
 from orchestrate.scene import Scene, Settings
 
 
@@ -24,7 +24,7 @@ def test_coated_face_carries_exactly_the_shell_nodes(body, face, level):
     edges = _edges_with_label(mesh, LABELS[face])
     ends = np.sort(mesh.points[edges][:, :, 0], axis=1)
     ends = ends[np.argsort(ends[:, 0])]
-    nodes = interface_nodes(scene.coating_length, settings.interface_elements)
+    nodes = interface_nodes(scene.coating_length, interface_elements(scene, settings))
     np.testing.assert_array_equal(ends[:, 0], nodes[:-1])     # bitwise: one edge per element
     np.testing.assert_array_equal(ends[:, 1], nodes[1:])
     y_face = scene.height + scene.h2 if body == "upper" else scene.height

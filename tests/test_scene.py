@@ -15,6 +15,7 @@ import math
 
 import pytest
 
+from orchestrate.mesh import interface_elements
 from orchestrate.scene import Scene, Settings
 from orchestrate.solve import solve
 
@@ -37,7 +38,7 @@ def test_contact_pressure_is_hertz_like(default_run):
     effective_modulus = scene.E1 / (2.0 * (1.0 - scene.nu1 ** 2))
     half_width = math.sqrt(4.0 * full_force * scene.hertz_radius / (math.pi * effective_modulus))
     peak = 2.0 * full_force / (math.pi * half_width)
-    element = scene.coating_length / Settings().interface_elements
+    element = scene.coating_length / interface_elements(scene, Settings())
     assert abs(-default_run["peak_contact_stress"] - peak) < 0.03 * peak
     assert abs(default_run["contact_half_width"] - half_width) < element
 
