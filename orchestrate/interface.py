@@ -32,10 +32,6 @@ class InterfaceQuadrature:
         """sum_q omega_q f_q, the interface integral of a field given at the points."""
         return float(np.dot(self.weight, values))
 
-    def norm(self, values):
-        """Discrete L2(S) norm of a field given at the points."""
-        return float(np.sqrt(np.dot(self.weight, np.square(values))))
-
 
 def nodal_quadrature(nodes, gap=None):
     """Simpson's rule on the elements [nodes[e], nodes[e+1]]: the 2N+1 P2 nodes."""

@@ -10,7 +10,7 @@ import tempfile
 import numpy as np
 
 from . import freefem
-from .contact import contact_stress
+from .contact import bond_traction, contact_stress
 
 
 def solve_monolithic(scene, settings, files, workdir, model=None):
@@ -60,5 +60,6 @@ def monolithic_interface(scene, settings, coated=True):
     result["x1"] = contact.x
     result["sigma_12n"] = contact_stress(contact.gap, result["upper_n"], result["coating_n"],
                                          settings.theta)
-    result["sigma_23n"] = (result["coating_bond"][1] - result["lower_bond"][1]) / settings.theta
+    result["sigma_23n"] = bond_traction(result["coating_bond"], result["lower_bond"],
+                                        settings.theta)[1]
     return result

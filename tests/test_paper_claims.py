@@ -9,7 +9,6 @@ gives the numbers."""
 from concurrent.futures import ProcessPoolExecutor
 import itertools
 
-import numpy as np
 import pytest
 
 from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
