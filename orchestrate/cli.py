@@ -26,7 +26,7 @@ _SCENE_HELP = {
 _SETTINGS_HELP = {
     "model": "coating model", "theta": "penalty parameter (b/E)",
     "method": "Robin loop: accelerated active-set loop, or the paper's fixed relaxation",
-    "robin": "Robin parameter gamma (E/b); default 1/theta for the paper's loop, else 20",
+    "robin": "Robin parameter gamma (E/b); default 1/theta for the paper's loop, else 2",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
     "L divides every mesh size by L", "shell_elements": "interface elements at level 1",
