@@ -11,7 +11,7 @@ import signal
 import sys
 
 from .freefem import FreeFemMissing
-from .scene import METHODS, MODELS, ParameterError, Scene, Settings
+from .scene import METHODS, MODELS, WORKERS, ParameterError, Scene, Settings
 from .worker import WorkerError
 
 _SCENE_HELP = {
@@ -30,6 +30,7 @@ _SETTINGS_HELP = {
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
     "L divides every mesh size by L", "shell_elements": "interface elements at level 1",
+    "workers": "persistent FreeFEM workers, or a fresh process per solve (the naive baseline)",
 }
 
 
@@ -41,7 +42,8 @@ def _add_dataclass_options(parser, cls, helps, title):
     group = parser.add_argument_group(title)
     for f in fields(cls):
         kind = float if f.default is None else type(f.default)
-        extra = {"model": {"choices": MODELS}, "method": {"choices": METHODS}}.get(f.name, {})
+        extra = {"model": {"choices": MODELS}, "method": {"choices": METHODS},
+                 "workers": {"choices": WORKERS}}.get(f.name, {})
         group.add_argument(_option(f.name), dest=f.name, type=kind, default=f.default,
                            help=f"{helps[f.name]} (default {f.default})",
                            **extra)

@@ -11,6 +11,7 @@ from typing import Optional
 
 MODELS = ("shell", "elastic")
 METHODS = ("active-set", "paper")
+WORKERS = ("persistent", "fresh")
 DEFAULT_ROBIN = 2.0    # E/b
 
 
@@ -97,9 +98,11 @@ class Settings:
     max_iterations: int = 3000
     mesh_level: int = 1            # 1: the paper's mesh; L: every mesh size divided by L
     shell_elements: int = 32       # interface elements at mesh level 1
+    workers: str = "persistent"    # FreeFEM workers: persistent, or a fresh process per solve
 
     def __post_init__(self):
         _require(self.model in MODELS, f"model = {self.model!r} must be one of {MODELS}")
+        _require(self.workers in WORKERS, f"workers = {self.workers!r} must be one of {WORKERS}")
         _require(self.method in METHODS, f"method = {self.method!r} must be one of {METHODS}")
         _positive("theta", self.theta)
         if self.robin is not None:

@@ -25,7 +25,7 @@ from .outputs import read_reactions, write_csv, write_history, write_json, write
 from .robin import run_robin_loop
 from .scene import to_dict
 from .state import StateLayout
-from .subdomains import Subdomains, write_inputs
+from .subdomains import start_subdomains, write_inputs
 
 
 class RunFailed(RuntimeError):
@@ -47,7 +47,7 @@ def solve(scene, settings, out_dir, progress=None):
     with tempfile.TemporaryDirectory(prefix="robin-") as workdir:
         files, contact_points, bond_points = write_inputs(scene, settings, workdir)
         layout = StateLayout(contact_points.size)
-        with Subdomains(scene, settings, files, workdir, out_dir) as subdomains:
+        with start_subdomains(scene, settings, files, workdir, out_dir) as subdomains:
             setup_seconds = time.perf_counter() - start
             loop = run_robin_loop(subdomains.solve, layout, contact_points, scene, settings,
                                   progress)

@@ -50,34 +50,42 @@ class Subdomains:
     """Omega1, the coating and Omega3 as persistent FreeFEM workers."""
 
     def __init__(self, scene, settings, files, workdir, output_dir):
-        self.output_dir = output_dir
+        self.workdir = workdir
         self.workers = {}
-        try:
-            self.workers["upper"] = Worker("omega1", "body.edp", [
+        self.specs = {
+            "upper": ("omega1", "body.edp", [
                 "-mesh", files.upper_mesh, "-E", scene.E1, "-nu", scene.nu1,
                 "-stamp", scene.stamp, "-contact", files.contact_points,
-                "-output", os.path.join(output_dir, "omega1")], workdir)
-            self.workers["coating"] = self._coating_worker(scene, settings, files, workdir)
-            self.workers["lower"] = Worker("omega3", "body.edp", [
+                "-output", os.path.join(output_dir, "omega1")]),
+            "coating": self._coating_spec(scene, settings, files, output_dir),
+            "lower": ("omega3", "body.edp", [
                 "-mesh", files.lower_mesh, "-E", scene.E3, "-nu", scene.nu3,
-                "-bond", files.bond_points,
-                "-output", os.path.join(output_dir, "omega3")], workdir)
-            self.dofs = {name: worker.wait_ready() for name, worker in self.workers.items()}
+                "-bond", files.bond_points, "-output", os.path.join(output_dir, "omega3")]),
+        }
+        self.dofs = self._start()
+
+    @staticmethod
+    def _coating_spec(scene, settings, files, output_dir):
+        output = os.path.join(output_dir, "coating")
+        if settings.model == "elastic":     # (25): the coating as a P2 body, Robin on both faces
+            return ("coating", "body.edp", [
+                "-mesh", files.coating_mesh, "-E", scene.E2, "-nu", scene.nu2,
+                "-contact", files.contact_points, "-bond", files.bond_points,
+                "-output", output])
+        return ("coating", "shell.edp", [
+            "-nodes", files.shell_nodes, "-E", scene.E2, "-nu", scene.nu2, "-h2", scene.h2,
+            "-kshear", scene.shear_factor, "-contact", files.contact_points,
+            "-bond", files.bond_points, "-output", output])
+
+    def _start(self):
+        """Start every worker (they assemble and factorise at once); return their dofs."""
+        try:
+            for key, (name, script, arguments) in self.specs.items():
+                self.workers[key] = Worker(name, script, arguments, self.workdir)
+            return {key: worker.wait_ready() for key, worker in self.workers.items()}
         except BaseException:
             self.close()
             raise
-
-    def _coating_worker(self, scene, settings, files, workdir):
-        output = os.path.join(self.output_dir, "coating")
-        if settings.model == "elastic":     # (25): the coating as a P2 body, Robin on both faces
-            return Worker("coating", "body.edp", [
-                "-mesh", files.coating_mesh, "-E", scene.E2, "-nu", scene.nu2,
-                "-contact", files.contact_points, "-bond", files.bond_points,
-                "-output", output], workdir)
-        return Worker("coating", "shell.edp", [
-            "-nodes", files.shell_nodes, "-E", scene.E2, "-nu", scene.nu2, "-h2", scene.h2,
-            "-kshear", scene.shear_factor, "-contact", files.contact_points,
-            "-bond", files.bond_points, "-output", output], workdir)
 
     def solve(self, data):
         """One independent solve per subdomain.
@@ -108,9 +116,46 @@ class Subdomains:
     def close(self):
         for worker in self.workers.values():
             worker.stop()
+        self.workers = {}
 
     def __enter__(self):
         return self
 
     def __exit__(self, *exc):
         self.close()
+
+
+class FreshProcessSubdomains(Subdomains):
+    """The naive baseline: a fresh FreeFEM process per subdomain solve, which assembles
+    and factorises its matrix every time. Kept to measure what persistent workers save
+    (``--workers fresh``); the answers are the same."""
+
+    def __init__(self, *arguments):
+        super().__init__(*arguments)
+        self.close()
+        self.last_data = None
+
+    def solve(self, data):
+        start = time.perf_counter()
+        self._start()
+        try:
+            traces, seconds = super().solve(data)
+        finally:
+            self.close()
+        self.last_data = data
+        seconds["wait"] = time.perf_counter() - start
+        return traces, seconds
+
+    def write_outputs(self):
+        self._start()
+        try:
+            super().solve(self.last_data)
+            super().write_outputs()
+        finally:
+            self.close()
+
+
+def start_subdomains(scene, settings, files, workdir, output_dir):
+    """The workers of a run: persistent (default) or a fresh process per solve."""
+    kind = FreshProcessSubdomains if settings.workers == "fresh" else Subdomains
+    return kind(scene, settings, files, workdir, output_dir)
