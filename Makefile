@@ -2,13 +2,14 @@
 #   make fig3 fig4 fig5   the paper's figures (results/figN.png, .pdf, _data.csv)
 #   make run     solve the default scene (shell model, h2 = b/8, E2 = E) into results/default
 #   make test    run the tests
+#   make bench   speed against accuracy (results/bench.csv, results/speed_accuracy.png)
 # Both install what they need first (FreeFEM from Debian, a pinned Python venv).
 
 PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test clean figures fig3 fig4 fig5
+.PHONY: setup run test clean figures fig3 fig4 fig5 bench
 
 # ---- The paper's figures: one run folder per scene, shared between figures ----------
 # results/runs/MODEL-h2_H-E2_E/summary.json is a run of the coating model MODEL with
@@ -62,6 +63,11 @@ run: setup
 
 test: setup
 	$(PYTHON) -m pytest -q tests
+
+# Speed against accuracy on the figure scenes (about 15 minutes; the fine references
+# are computed once into results/reference/): results/bench.csv, speed_accuracy.png.
+bench: setup
+	$(PYTHON) -m orchestrate.bench
 
 clean:
 	rm -rf results/*/ .pytest_cache
