@@ -41,7 +41,8 @@ class Anderson:
 
     def _filter(self, columns):
         """Indices of the columns kept, dropping the oldest dependent ones first."""
-        keep = list(range(columns.shape[1]))
+        # more columns than unknowns cannot be independent: keep the newest ones
+        keep = list(range(max(0, columns.shape[1] - columns.shape[0]), columns.shape[1]))
         while keep:
             # QR with the newest column first, so older near-duplicates are the ones dropped
             order = keep[::-1]

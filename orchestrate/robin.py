@@ -52,7 +52,9 @@ def robin_data(layout, x, gap, theta, gamma, psi):
         coating on S23: alpha = gamma,      g = u3 - c t_3 / gamma
         Omega3  on S32: alpha = gamma,      g = f - c t_f / gamma
     For gamma = 1/theta these are (21), (22), (23) with Psi u^k + (d - u1n - w)^- =
-    Psi (d - neighbour) (METHOD.md, global components)."""
+    Psi (d - neighbour) (METHOD.md, global components). At a fixed point the two sides'
+    tractions t1, t2 satisfy (2 - gamma theta)(t1 + t2) = 0 and then the law; so
+    gamma theta must stay away from 2 (Settings refuses gamma theta >= 1.5)."""
     get = lambda name: layout.get(x, name)  # noqa: E731
     c = 1.0 - gamma * theta
     alpha_contact = gamma * psi
@@ -187,6 +189,8 @@ class _Loop:
             "seconds": time.perf_counter() - self.start,
             "cpu_upper": self.seconds["upper"], "cpu_coating": self.seconds["coating"],
             "cpu_lower": self.seconds["lower"], "wait": self.seconds["wait"],
+            "back_upper": self.seconds["back_upper"], "back_coating": self.seconds["back_coating"],
+            "back_lower": self.seconds["back_lower"],
         }
         self.history.append(row)
         if self.progress is not None:

@@ -107,6 +107,10 @@ class Settings:
         _positive("theta", self.theta)
         if self.robin is not None:
             _positive("robin", self.robin)
+            # the Robin-Robin exchange loses the penalised laws at gamma theta = 2 (README)
+            _require(self.robin * self.theta < 1.5,
+                     f"robin = {self.robin!r} must be below 1.5/theta = {1.5 / self.theta:g}: "
+                     "at gamma theta = 2 the Robin exchange no longer fixes the interface laws")
         _require(_finite(self.rho) and 0 < self.rho <= 1,
                  f"rho = {self.rho!r} must lie in (0, 1]")
         _positive("eps_u", self.eps_u)
@@ -117,10 +121,11 @@ class Settings:
     @property
     def robin_parameter(self):
         """gamma: as given, else the paper's 1/theta for its loop and 2 E/b otherwise
-        (measured best for the active-set loop on the figure scenes, README)."""
+        (measured best for the active-set loop on the figure scenes, README), but never
+        above 1/theta, where the exchange stays away from its singularity gamma theta = 2."""
         if self.robin is not None:
             return self.robin
-        return 1.0 / self.theta if self.method == "paper" else DEFAULT_ROBIN
+        return 1.0 / self.theta if self.method == "paper" else min(DEFAULT_ROBIN, 1.0 / self.theta)
 
 
 def to_dict(obj):

@@ -93,8 +93,8 @@ class Subdomains:
         ``data`` maps "upper", "coating", "lower" to the arrays of the request: Robin
         coefficient and data per interface. Returns the traces
         ``(upper_n, coating_n, coating_bond, lower_bond)`` and the timings: each worker's
-        CPU seconds and "wait", the driver's wall time from the first request sent to the
-        last reply read."""
+        CPU seconds for the request and ("back_" + name) for its back-substitution alone,
+        and "wait", the driver's wall time from the first request sent to the last reply."""
         start = time.perf_counter()
         for name, worker in self.workers.items():
             worker.send(CMD_SOLVE, data[name])
@@ -102,7 +102,9 @@ class Subdomains:
         coating_n, coating_1, coating_2, coating_seconds = self.workers["coating"].receive_arrays(4)
         lower_1, lower_2, lower_seconds = self.workers["lower"].receive_arrays(3)
         seconds = {"upper": upper_seconds[0], "coating": coating_seconds[0],
-                   "lower": lower_seconds[0], "wait": time.perf_counter() - start}
+                   "lower": lower_seconds[0], "wait": time.perf_counter() - start,
+                   "back_upper": upper_seconds[1], "back_coating": coating_seconds[1],
+                   "back_lower": lower_seconds[1]}
         return (upper_n, coating_n, np.array([coating_1, coating_2]),
                 np.array([lower_1, lower_2])), seconds
 

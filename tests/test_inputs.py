@@ -29,6 +29,7 @@ def test_scene_refuses(values, parameter):
     ({"mesh_level": True}, "mesh_level"), ({"eps_u": 0.0}, "eps_u"),
     ({"max_iterations": 0}, "max_iterations"), ({"model": "plate"}, "model"),
     ({"method": "fast"}, "method"), ({"robin": -1.0}, "robin"),
+    ({"robin": 2.0, "theta": 1.0}, "robin"), ({"workers": "threads"}, "workers"),
     ({"shell_elements": 0}, "shell_elements"),
 ])
 def test_settings_refuse(values, parameter):

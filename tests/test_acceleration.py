@@ -1,0 +1,74 @@
+"""Anderson acceleration (IQN-ILS) of the Robin loop's fixed-point map.
+
+On affine maps x -> M x + c it must behave as GMRES does: reach the fixed point in about
+n steps in dimension n, even where plain relaxation crawls (spectral radius near 1) or
+diverges (an eigenvalue beyond -1); a history with dependent columns must be filtered,
+not crash. And the answer of a Robin run must not depend on the loop that reached it.
+"""
+
+import numpy as np
+import pandas as pd
+
+from orchestrate.acceleration import Anderson
+from orchestrate.scene import Scene, Settings
+from orchestrate.solve import solve
+
+
+def _affine_map(eigenvalues, seed=0):
+    rng = np.random.default_rng(seed)
+    basis, _ = np.linalg.qr(rng.standard_normal((len(eigenvalues), len(eigenvalues))))
+    matrix = basis @ np.diag(eigenvalues) @ basis.T
+    offset = rng.standard_normal(len(eigenvalues))
+    fixed_point = np.linalg.solve(np.eye(len(eigenvalues)) - matrix, offset)
+    return (lambda x: matrix @ x + offset), fixed_point
+
+
+def _iterate(step, fixed_point, iterations):
+    x = np.zeros_like(fixed_point)
+    for _ in range(iterations):
+        x = step(x)
+    return np.linalg.norm(x - fixed_point) / np.linalg.norm(fixed_point)
+
+
+def test_anderson_solves_a_slow_affine_map_in_about_n_steps():
+    n = 20
+    G, fixed_point = _affine_map(np.linspace(0.5, 0.995, n))
+    anderson = Anderson(np.ones(n))
+    assert _iterate(lambda x: anderson.step(x, G(x)), fixed_point, n + 3) < 1e-8
+    # plain relaxation is nowhere near after as many steps
+    assert _iterate(lambda x: 0.5 * x + 0.5 * G(x), fixed_point, n + 3) > 1e-2
+
+
+def test_anderson_converges_where_relaxation_diverges():
+    n = 12
+    G, fixed_point = _affine_map(np.concatenate([np.linspace(-5.0, -3.5, 4),
+                                                 np.linspace(0.2, 0.9, n - 4)]))
+    anderson = Anderson(np.ones(n))
+    assert _iterate(lambda x: anderson.step(x, G(x)), fixed_point, n + 3) < 1e-8
+    assert _iterate(lambda x: 0.5 * x + 0.5 * G(x), fixed_point, n + 3) > 1.0
+
+
+def test_dependent_history_is_filtered():
+    anderson = Anderson(np.ones(3))
+    x, g = np.zeros(3), np.array([1.0, 2.0, 3.0])
+    for _ in range(4):                      # the same pair again and again
+        result = anderson.step(x, g)
+        assert np.all(np.isfinite(result))
+    assert len(anderson._filter(np.array([[1.0, 2.0], [1.0, 2.0], [0.0, 0.0]]))) == 1
+
+
+def test_the_answer_does_not_depend_on_the_loop(tmp_path):
+    """The paper's loop (gamma = 1/theta, fixed rho) and the accelerated active-set loop
+    (Anderson, gamma = 0.5 E/b) at a penalty where both converge: same stresses."""
+    scene = Scene()
+    answers = {}
+    for method in ("paper", "active-set"):
+        robin = 0.5 if method == "active-set" else None
+        settings = Settings(method=method, theta=1.0, robin=robin, eps_u=1e-10,
+                            max_iterations=2000)
+        summary = solve(scene, settings, tmp_path / method)
+        answers[method] = (summary["iterations"],
+                           pd.read_csv(tmp_path / method / "contact.csv").sigma_n.to_numpy())
+    (paper_iterations, paper), (accelerated_iterations, accelerated) = answers.values()
+    assert np.max(np.abs(paper - accelerated)) < 1e-6 * np.max(np.abs(paper))
+    assert accelerated_iterations < paper_iterations / 3
