@@ -75,25 +75,29 @@ def solve(scene, settings, out_dir, progress=None):
         write_json(os.path.join(out_dir, "summary.json"), summary)
         raise RunFailed(summary)
 
-    summary.update(_write_results(scene, settings, layout, loop.state, contact_points,
+    summary.update(_write_results(scene, settings, layout, loop, contact_points,
                                   bond_points, out_dir))
     write_json(os.path.join(out_dir, "summary.json"), summary)
     return summary
 
 
-def interface_stresses(layout, state):
+def interface_stresses(layout, state, psi):
     """sigma_12n on S12 and the traction (sigma_t, sigma_n) on S23 (on Omega3's top).
 
     Each side's traction is what its own Robin condition imposed in the last solve; the
-    two sides agree at convergence, and their mean is written."""
+    two sides agree at convergence, and their mean is written. Off the contact set Psi
+    the law says zero; the loop's residual traction there (the active-set loop holds
+    inactive points with a Robin term) is of the order of eps_u and is not a stress."""
     sigma_12n = 0.5 * (layout.get(state, "t_upper_n") + layout.get(state, "t_coating_n"))
+    sigma_12n = np.where(psi > 0, sigma_12n, 0.0)
     traction_23 = 0.5 * (layout.get(state, "t_lower_bond") - layout.get(state, "t_coating_bond"))
     return sigma_12n, traction_23
 
 
-def _write_results(scene, settings, layout, state, contact_points, bond_points, out_dir):
+def _write_results(scene, settings, layout, loop, contact_points, bond_points, out_dir):
     """Interface stresses and forces of the converged state; return summary entries."""
-    sigma_12n, traction_23 = interface_stresses(layout, state)
+    state = loop.state
+    sigma_12n, traction_23 = interface_stresses(layout, state, loop.psi)
     write_csv(os.path.join(out_dir, "contact.csv"), {"x1": contact_points.x, "sigma_n": sigma_12n})
     write_csv(os.path.join(out_dir, "traces.csv"), {
         "x1": contact_points.x,
