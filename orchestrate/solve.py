@@ -7,7 +7,10 @@ Results of a run in its output folder:
                    (u1, u2) of the coating's bottom and of Omega3's top on S23
     history.csv    one row per Robin iteration
     summary.json   scene, settings, outcome, forces, timings (written last)
-    omega1.vtu, omega3.vtu, coating.vtu   displacement fields for ParaView
+    omega1.vtu, omega3.vtu, coating.vtu   displacement (and stress) fields for ParaView
+    omega1.csv, omega3.csv  x1, x2, u1, u2, sigma_eq at the P2 nodes of each body
+    coating.csv    the same in the 2D coating (model elastic); coating_fields.csv holds
+                   the shell's v, w, gamma, T11, T13, M11 (model shell)
 Numbers that did not converge are never written as results: a run that diverges or
 stagnates writes only history.csv and a summary.json that says why.
 """
