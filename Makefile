@@ -43,8 +43,8 @@ setup: .venv/.installed .freefem-installed
 
 # FreeFEM and the X11/GL client libraries the gmsh wheel links against, from Debian.
 .freefem-installed:
-	@if command -v FreeFem++ >/dev/null && [ -e /usr/lib/x86_64-linux-gnu/libGLU.so.1 ]; then \
-	  echo "FreeFEM and gmsh's libraries are present"; \
+	@if dpkg -s $(APT_PACKAGES) >/dev/null 2>&1; then \
+	  echo "FreeFEM and gmsh's libraries are installed"; \
 	else \
 	  $(SUDO) apt-get update -qq && \
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $(APT_PACKAGES); \
