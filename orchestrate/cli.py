@@ -63,6 +63,18 @@ def build_parser():
     solve.add_argument("--quiet", action="store_true", help="no progress lines")
     _add_dataclass_options(solve, Scene, _SCENE_HELP, "scene")
     _add_dataclass_options(solve, Settings, _SETTINGS_HELP, "settings")
+    sweep = commands.add_parser(
+        "sweep", help="run a parameter sweep (a TOML file) into results/<name>/",
+        description="Run every point of a sweep file (orchestrate/sweep.py explains the "
+                    "format); finished runs are skipped, so an interrupted sweep resumes. "
+                    "Writes one folder per run and runs.csv, one row per run.")
+    sweep.add_argument("file", help="sweep file (TOML)")
+    sweep.add_argument("--out", help="sweep folder (default results/<name>)")
+    sweep.add_argument("--engine", choices=("local", "dask"), default="local",
+                       help="local processes (default) or Dask distributed")
+    sweep.add_argument("--jobs", type=int, help="runs at once (default: one per core)")
+    sweep.add_argument("--scheduler", help="Dask scheduler address tcp://HOST:PORT (a "
+                       "cluster sharing the results folder); default: a local Dask cluster")
     plot = commands.add_parser("plot", help="plot the stresses of a finished run",
                                description="Write RUN/stresses.png from RUN's CSV files.")
     plot.add_argument("run", help="a folder written by `solve`")
@@ -82,6 +94,22 @@ def _progress(row, status):
               f"  active points {row['active_points']:4d}  {row['seconds']:.2f} s", flush=True)
 
 
+def _sweep(args):
+    from .sweep import run_sweep
+    try:
+        table = run_sweep(args.file, args.out, args.engine, args.jobs, args.scheduler)
+    except (ParameterError, FreeFemMissing, OSError) as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted: finished runs are kept, run the sweep again to resume",
+              file=sys.stderr)
+        return 130
+    counts = table["status"].value_counts().to_dict() if len(table) else {}
+    print(f"{len(table)} runs: " + ", ".join(f"{n} {s}" for s, n in sorted(counts.items())))
+    return 0
+
+
 def main(argv=None):
     args = build_parser().parse_args(argv)
     _terminate_on_sigterm()
@@ -89,6 +117,8 @@ def main(argv=None):
         from .plot import plot_run
         print(plot_run(args.run))
         return 0
+    if args.command == "sweep":
+        return _sweep(args)
     from .solve import RunFailed, solve
 
     try:

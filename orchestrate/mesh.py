@@ -10,6 +10,7 @@ of the 2D coating's structured mesh.
 from contextlib import contextmanager
 from pathlib import Path
 import signal
+import threading
 
 import math
 
@@ -145,8 +146,11 @@ def body_mesh(scene, settings, body):
 @contextmanager
 def _gmsh_session():
     """gmsh initialised for one model. gmsh installs its own C-level signal handlers;
-    the driver's (SIGINT, SIGTERM: clean up the workers) are put back afterwards."""
-    handlers = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+    the driver's (SIGINT, SIGTERM: clean up the workers) are put back afterwards. Only
+    the main thread has signal handlers (a Dask worker meshes in another thread)."""
+    main_thread = threading.current_thread() is threading.main_thread()
+    handlers = ({sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+                if main_thread else {})
     gmsh.initialize(interruptible=False)
     try:
         yield

@@ -27,7 +27,7 @@ class WorkerError(RuntimeError):
     """A worker died, timed out or answered something unexpected."""
 
 
-def _die_with_parent():
+def die_with_parent():
     """Runs in the child before exec: get SIGKILL if the driver dies, even by SIGKILL."""
     PR_SET_PDEATHSIG = 1
     try:
@@ -60,7 +60,7 @@ class Worker:
                 self.process = subprocess.Popen(
                     command, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
                     env=freefem.environment(), start_new_session=True,
-                    preexec_fn=_die_with_parent)
+                    preexec_fn=die_with_parent)
         except BaseException:
             self.kill()
             raise

@@ -1,0 +1,143 @@
+"""Parameter sweeps (orchestrate/sweep.py): a row for every run, failures included;
+resuming after Ctrl-C or a killed driver redoes only the missing runs and ends with the
+table of an uninterrupted sweep; the Dask engine gives the same table; no FreeFEM process
+outlives a sweep. Tables are compared in every column but the timings (``*_s``), numbers
+to 1e-9 relative: repeated runs agree to round-off (~1e-13), not bit for bit."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from orchestrate.sweep import load_sweep, point_id, run_sweep
+from tests.conftest import PROJECT_DIR
+from tests.test_lifecycle import _processes_mentioning
+
+SWEEP = """
+name = "small"
+[fixed]
+eps_u = 1e-6
+[grid]
+model = ["shell", "elastic"]
+h2 = [0.25, 0.125]
+E2 = [1.0, 5.0]
+[[runs]]
+model = "shell"
+method = "paper"
+max_iterations = 30
+[[runs]]
+robin = 5000.0
+"""
+RUNS = 10
+
+
+@pytest.fixture(scope="module")
+def sweep_file(tmp_path_factory):
+    path = tmp_path_factory.mktemp("sweep") / "small.toml"
+    path.write_text(SWEEP)
+    return path
+
+
+@pytest.fixture(scope="module")
+def uninterrupted(sweep_file, tmp_path_factory):
+    out = tmp_path_factory.mktemp("uninterrupted")
+    return run_sweep(sweep_file, out, jobs=2, stream=open(os.devnull, "w")), out
+
+
+def _same_table(a, b):
+    assert list(a.columns) == list(b.columns)
+    for column in a.columns:
+        if column.endswith("_s"):
+            continue
+        if pd.api.types.is_float_dtype(a[column]) and pd.api.types.is_float_dtype(b[column]):
+            np.testing.assert_allclose(a[column], b[column], rtol=1e-9, atol=0, err_msg=column)
+        else:
+            assert a[column].tolist() == b[column].tolist(), column
+
+
+def test_every_run_is_a_row_failures_with_their_reason(uninterrupted):
+    table, out = uninterrupted
+    assert len(table) == RUNS and len(pd.read_csv(out / "runs.csv")) == RUNS
+    assert (table.status == "converged").sum() == 8
+    invalid = table[table.status == "invalid"]
+    assert len(invalid) == 1 and "robin" in invalid.reason.iloc[0]
+    stopped = table[table.status == "max_iterations"]
+    assert len(stopped) == 1 and not stopped.converged.iloc[0]
+    assert sorted(os.listdir(out / "runs")) == sorted(table.id)
+
+
+def test_a_finished_sweep_is_not_run_again(sweep_file, uninterrupted):
+    _, out = uninterrupted
+    before = {name: os.stat(out / "runs" / name).st_mtime_ns for name in os.listdir(out / "runs")}
+    start = time.monotonic()
+    run_sweep(sweep_file, out, jobs=2, stream=open(os.devnull, "w"))
+    assert time.monotonic() - start < 5
+    after = {name: os.stat(out / "runs" / name).st_mtime_ns for name in os.listdir(out / "runs")}
+    assert before == after
+
+
+def _finished(out):
+    runs = out / "runs"
+    return {name for name in os.listdir(runs)} if runs.exists() else set()
+
+
+@pytest.mark.parametrize("how", [signal.SIGINT, signal.SIGKILL], ids=["Ctrl-C", "SIGKILL"])
+def test_an_interrupted_sweep_resumes_with_the_missing_runs_only(sweep_file, uninterrupted,
+                                                                   tmp_path, how):
+    out = tmp_path / "sweep"
+    command = [sys.executable, "-m", "orchestrate", "sweep", str(sweep_file), "--out", str(out),
+               "--jobs", "1"]
+    process = subprocess.Popen(command, cwd=PROJECT_DIR, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while len(_finished(out)) < 3 and time.monotonic() < deadline:
+        time.sleep(0.05)
+    process.send_signal(how)
+    _, stderr = process.communicate(timeout=60)
+    if how == signal.SIGINT:
+        assert process.returncode == 130 and "interrupted" in stderr
+    else:
+        assert process.returncode == -signal.SIGKILL
+    time.sleep(0.5)                     # the killed driver's processes follow it
+    assert _processes_mentioning(str(out)) == []
+    kept = _finished(out)
+    assert 3 <= len(kept) < RUNS
+    assert all((out / "runs" / name / "summary.json").exists() for name in kept)
+    stamps = {name: os.stat(out / "runs" / name).st_mtime_ns for name in kept}
+
+    resumed = subprocess.run(command, cwd=PROJECT_DIR, capture_output=True, text=True,
+                             timeout=300)
+    assert resumed.returncode == 0, resumed.stderr
+    assert {name: os.stat(out / "runs" / name).st_mtime_ns for name in kept} == stamps
+    assert not (out / "scratch").exists() and not (out / "tmp").exists()
+    _same_table(pd.read_csv(out / "runs.csv"), pd.read_csv(uninterrupted[1] / "runs.csv"))
+
+
+def test_the_dask_engine_runs_the_same_sweep(sweep_file, uninterrupted, tmp_path):
+    table = run_sweep(sweep_file, tmp_path / "dask", engine="dask", jobs=2,
+                      stream=open(os.devnull, "w"))
+    _same_table(table, uninterrupted[0])
+    assert _processes_mentioning(str(tmp_path / "dask")) == []
+
+
+def test_a_bad_sweep_file_is_refused_naming_the_parameter(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text('[grid]\nh2 = [0.1]\nyoung = [1.0]\n')
+    result = subprocess.run([sys.executable, "-m", "orchestrate", "sweep", str(path),
+                             "--out", str(tmp_path / "out")], cwd=PROJECT_DIR,
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 2 and "young" in result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_points_keep_their_names_when_a_sweep_grows(tmp_path):
+    small, large = tmp_path / "a.toml", tmp_path / "b.toml"
+    small.write_text('[grid]\nh2 = [0.5]\nE2 = [1.0]\n')
+    large.write_text('[grid]\nh2 = [0.25, 0.5]\nE2 = [1.0, 5.0]\n')
+    (_, first), (_, second) = load_sweep(small), load_sweep(large)
+    assert {point_id(p) for p in first} <= {point_id(p) for p in second}
