@@ -3,13 +3,14 @@
 #   make run     solve the default scene (shell model, h2 = b/8, E2 = E) into results/default
 #   make test    run the tests
 #   make bench   speed against accuracy (results/bench.csv, results/speed_accuracy.png)
+#   make stability  a sweep of 102 runs and maps of where each method converges
 # Both install what they need first (FreeFEM from Debian, a pinned Python venv).
 
 PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test clean figures fig3 fig4 fig5 bench
+.PHONY: setup run test clean figures fig3 fig4 fig5 bench stability
 
 # ---- The paper's figures: one run folder per scene, shared between figures ----------
 # results/runs/MODEL-h2_H-E2_E/summary.json is a run of the coating model MODEL with
@@ -68,6 +69,12 @@ test: setup
 # are computed once into results/reference/): results/bench.csv, speed_accuracy.png.
 bench: setup
 	$(PYTHON) -m orchestrate.bench
+
+# Where each method fails: a sweep of 102 runs (resumable), then its maps and charts
+# (results/stability/). Errors use the fine references of `make bench` where they exist.
+stability: setup
+	$(PYTHON) -m orchestrate sweep orchestrate/sweeps/stability.toml
+	$(PYTHON) -m orchestrate.stability results/stability
 
 clean:
 	rm -rf results/*/ .pytest_cache

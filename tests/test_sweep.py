@@ -69,6 +69,9 @@ def test_every_run_is_a_row_failures_with_their_reason(uninterrupted):
     stopped = table[table.status == "max_iterations"]
     assert len(stopped) == 1 and not stopped.converged.iloc[0]
     assert sorted(os.listdir(out / "runs")) == sorted(table.id)
+    converged = table[table.converged.astype(bool)]
+    assert (converged.final_relative_change < converged.eps_u).all()
+    assert not table[~table.converged.astype(bool)].status.isin(["converged"]).any()
 
 
 def test_a_finished_sweep_is_not_run_again(sweep_file, uninterrupted):
