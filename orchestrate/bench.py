@@ -18,7 +18,6 @@ Writes results/bench.csv (one row per run) and results/speed_accuracy.png.
 """
 
 import argparse
-import itertools
 import os
 import time
 
@@ -30,14 +29,14 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from .claims import distance  # noqa: E402
+from .figures import FIGURE_SCENES  # noqa: E402
 from .monolithic import monolithic_interface  # noqa: E402
 from .paths import RESULTS_DIR  # noqa: E402
 from .reference import reference  # noqa: E402
 from .scene import Scene, Settings  # noqa: E402
 from .solve import RunFailed, solve  # noqa: E402
 
-FIGURE_SCENES = sorted(set(itertools.product((1.0, 0.5, 0.25, 0.125, 0.0625), (5.0, 1.0)))
-                       | set(itertools.product((1.0, 0.5, 0.25, 0.125), (0.2,))))
+SCENES = sorted({(h2, E2) for _, h2, E2 in FIGURE_SCENES})
 ACCELERATED, PAPER, MONOLITHIC, FRESH = ("DDM accelerated", "DDM paper (fixed rho, eps_u 1e-3)",
                                          "monolithic", "DDM fresh process per solve")
 
@@ -134,7 +133,7 @@ def main(argv=None):
     parser.add_argument("--out", default=str(RESULTS_DIR))
     args = parser.parse_args(argv)
     scenes = ([tuple(map(float, s.split(":"))) for s in args.scenes] if args.scenes
-              else FIGURE_SCENES)
+              else SCENES)
     table = benchmark(scenes, os.path.join(args.out, "bench"))
     table.to_csv(os.path.join(args.out, "bench.csv"), index=False)
     chart(table, os.path.join(args.out, "speed_accuracy.png"))

@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from .figures import load_runs
+from .interface import nodal_quadrature
 
 
 class Runs:
@@ -36,20 +37,11 @@ class Runs:
         return pd.read_csv(os.path.join(self.folders[("elastic", h2, E2)], "coating.csv"))
 
 
-def _simpson_weights(x):
-    size = np.diff(x[::2])
-    weight = np.zeros_like(x)
-    weight[0:-1:2] += size / 6
-    weight[1::2] += 4 * size / 6
-    weight[2::2] += size / 6
-    return weight
-
-
 def distance(a, b):
     """||a - b|| / ||b|| for two curves given at the same interface points."""
     (xa, ya), (xb, yb) = a, b
     assert np.allclose(xa, xb), "curves on different interface points"
-    weight = _simpson_weights(xb)
+    weight = nodal_quadrature(xb[::2]).weight       # the element ends are every other point
     return float(np.sqrt(np.dot(weight, (ya - yb) ** 2) / np.dot(weight, yb ** 2)))
 
 

@@ -22,6 +22,13 @@ import pandas as pd  # noqa: E402
 
 from .paths import RESULTS_DIR  # noqa: E402
 
+# Every scene the three figures need, (model, h2, E2): the same list as the Makefile's
+# FIG3_RUNS, FIG4_RUNS and FIG5_RUNS together (tests/test_paper_claims.py checks it).
+FIGURE_HEIGHTS = (1.0, 0.5, 0.25, 0.125, 0.0625)
+FIGURE_SCENES = sorted(
+    {(model, h2, E2) for model in ("shell", "elastic") for h2 in FIGURE_HEIGHTS for E2 in (5.0, 1.0)}
+    | {("elastic", h2, E2) for h2 in FIGURE_HEIGHTS[:4] for E2 in (0.2, 1.0, 5.0)})
+
 LINESTYLE = {"shell": "-", "elastic": "--"}
 MODEL_NAME = {"shell": "shell", "elastic": "2D coating"}
 

@@ -12,19 +12,16 @@ eps_u = 1e-3 answers are from the converged one (contact force, peak contact str
 """
 
 import argparse
-import itertools
 import os
 import tempfile
 
 import pandas as pd
 
+from .figures import FIGURE_SCENES
 from .paths import RESULTS_DIR
 from .scene import Scene, Settings
 from .solve import RunFailed, solve
 
-FIGURE_SCENES = sorted(set(
-    list(itertools.product(("shell", "elastic"), (1.0, 0.5, 0.25, 0.125, 0.0625), (5.0, 1.0)))
-    + list(itertools.product(("elastic",), (1.0, 0.5, 0.25, 0.125), (0.2, 1.0, 5.0)))))
 
 
 def _run(scene, settings):

@@ -14,6 +14,7 @@ prefixed ``t_``. Non-penetration on S12 reads u1n + w <= d.
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -29,7 +30,9 @@ DISPLACEMENTS = ("upper_n", "coating_n", "coating_bond", "lower_bond")
 class StateLayout:
     points: int   # interface points, the same on S12 and S23
 
-    def _slices(self):
+    @cached_property
+    def _blocks(self):
+        """(slice of every block, total size), computed once."""
         slices, start = {}, 0
         for name, components in BLOCKS.items():
             slices[name] = slice(start, start + components * self.points)
@@ -38,20 +41,20 @@ class StateLayout:
 
     @property
     def size(self):
-        return self._slices()[1]
+        return self._blocks[1]
 
     def zeros(self):
         return np.zeros(self.size)
 
     def get(self, x, name):
         """View of one block: shape (points,) or (2, points)."""
-        block = x[self._slices()[0][name]]
+        block = x[self._blocks[0][name]]
         return block if BLOCKS[name] == 1 else block.reshape(BLOCKS[name], self.points)
 
     def pack(self, **blocks):
         """A state from every block by name."""
         x = self.zeros()
-        slices = self._slices()[0]
+        slices = self._blocks[0]
         for name in BLOCKS:
             x[slices[name]] = np.ravel(blocks[name])
         return x
@@ -59,7 +62,7 @@ class StateLayout:
     def displacement_mask(self):
         """True on the displacement entries (the paper's stopping test looks at these)."""
         mask = np.zeros(self.size, dtype=bool)
-        slices = self._slices()[0]
+        slices = self._blocks[0]
         for name in DISPLACEMENTS:
             mask[slices[name]] = True
         return mask

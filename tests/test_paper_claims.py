@@ -8,17 +8,17 @@ gives the numbers."""
 
 from concurrent.futures import ProcessPoolExecutor
 import itertools
+import subprocess
 
 import pytest
 
 from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
+from orchestrate.figures import FIGURE_HEIGHTS, FIGURE_SCENES
 from orchestrate.scene import Scene, Settings
 from orchestrate.solve import solve
+from tests.conftest import PROJECT_DIR
 
-HEIGHTS = (1.0, 0.5, 0.25, 0.125, 0.0625)
-SCENES = sorted(set(
-    list(itertools.product(("shell", "elastic"), HEIGHTS, (5.0, 1.0)))
-    + list(itertools.product(("elastic",), HEIGHTS[:4], (0.2, 1.0, 5.0)))))
+HEIGHTS = FIGURE_HEIGHTS
 
 
 def _solve(arguments):
@@ -30,9 +30,19 @@ def _solve(arguments):
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
     base = tmp_path_factory.mktemp("figure-scenes")
-    jobs = [(model, h2, E2, str(base / f"{model}-h2_{h2:g}-E2_{E2:g}")) for model, h2, E2 in SCENES]
+    jobs = [(model, h2, E2, str(base / f"{model}-h2_{h2:g}-E2_{E2:g}")) for model, h2, E2 in FIGURE_SCENES]
     with ProcessPoolExecutor(max_workers=2) as pool:
         return Runs(list(pool.map(_solve, jobs)))
+
+
+def test_the_figure_scenes_are_the_makefiles():
+    """The Makefile's run lists and FIGURE_SCENES name the same 24 runs."""
+    make = subprocess.run(["make", "-n", "-p", "fig3"], cwd=PROJECT_DIR, capture_output=True,
+                          text=True).stdout
+    lists = [line.split(":=", 1)[1].split() for line in make.splitlines()
+             if line.startswith(("FIG3_RUNS :=", "FIG4_RUNS :=", "FIG5_RUNS :="))]
+    names = {path.split("/")[2] for paths in lists for path in paths}
+    assert names == {f"{m}-h2_{h2:g}-E2_{E2:g}" for m, h2, E2 in FIGURE_SCENES}
 
 
 def contact(runs, model, h2, E2):
