@@ -5,7 +5,7 @@ Lengths are in units of b and moduli in units of E (b = E = 1 internally), as in
 result so that any result can be reproduced.
 """
 
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, dataclass
 import math
 from typing import Optional
 
@@ -130,11 +130,3 @@ class Settings:
 
 def to_dict(obj):
     return asdict(obj)
-
-
-def from_dict(cls, values):
-    """Build a Scene or Settings from a dict, refusing unknown keys by name."""
-    known = {f.name for f in fields(cls)}
-    unknown = set(values) - known
-    _require(not unknown, f"unknown {cls.__name__.lower()} parameter(s): {sorted(unknown)}")
-    return cls(**values)
