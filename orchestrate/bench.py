@@ -30,10 +30,11 @@ import pandas as pd  # noqa: E402
 
 from .claims import distance  # noqa: E402
 from .figures import FIGURE_SCENES  # noqa: E402
-from .monolithic import monolithic_interface  # noqa: E402
+from .monolithic import monolithic_curves  # noqa: E402
 from .paths import RESULTS_DIR  # noqa: E402
 from .reference import reference  # noqa: E402
-from .scene import Scene, Settings  # noqa: E402
+from .scene import Settings  # noqa: E402
+from .scene_file import paper_scene  # noqa: E402
 from .solve import RunFailed, solve  # noqa: E402
 
 SCENES = sorted({(h2, E2) for _, h2, E2 in FIGURE_SCENES})
@@ -67,29 +68,33 @@ def _ddm_row(scene, settings, method, ref, out_dir):
             "wall_time_s": summary["wall_time_s"],
             "time_per_iteration_s": summary["time_per_iteration_s"], "converged": True,
             **errors(contact.x1.to_numpy(), contact.sigma_n.to_numpy(),
-                     interface.sigma_n.to_numpy(), ref, scene.coating_length)}
+                     interface.sigma_n.to_numpy(), ref, coating_length(scene))}
+
+
+def coating_length(scene):
+    return scene.coatings[0].end - scene.coatings[0].start
 
 
 def _monolithic_row(scene, settings, ref):
     start = time.perf_counter()
-    result = monolithic_interface(scene, settings)
-    return {"method": MONOLITHIC, "iterations": result["solves"],
+    x1, sigma_12n, sigma_23n, solves = monolithic_curves(scene, settings)
+    return {"method": MONOLITHIC, "iterations": solves,
             "wall_time_s": time.perf_counter() - start, "converged": True,
-            **errors(result["x1"], result["sigma_12n"], result["sigma_23n"], ref,
-                     scene.coating_length)}
+            **errors(x1, sigma_12n, sigma_23n, ref, coating_length(scene))}
+
 
 
 def benchmark(scenes, out_dir):
     rows = []
     for h2, E2 in scenes:
-        scene = Scene(h2=h2, E2=E2)
         ref = reference(h2, E2, progress=lambda row: print("  reference", row, flush=True))
         models = ("shell", "elastic") if E2 != 0.2 else ("elastic",)
         for model in models:
-            runs = [(Settings(model=model, mesh_level=level), ACCELERATED) for level in (1, 2)]
-            runs.append((Settings(model=model, method="paper", eps_u=1e-3), PAPER))
+            scene = paper_scene(h2=h2, E2=E2, model=model)
+            runs = [(Settings(mesh_level=level), ACCELERATED) for level in (1, 2)]
+            runs.append((Settings(method="paper", eps_u=1e-3), PAPER))
             if (h2, E2) == (0.125, 1.0):
-                runs.append((Settings(model=model, workers="fresh"), FRESH))
+                runs.append((Settings(workers="fresh"), FRESH))
             for settings, method in runs:
                 name = f"{model}-h2_{h2:g}-E2_{E2:g}-{method.split()[1]}-L{settings.mesh_level}"
                 row = _ddm_row(scene, settings, method, ref, os.path.join(out_dir, "runs", name))
@@ -97,7 +102,7 @@ def benchmark(scenes, out_dir):
                              **row})
                 print(rows[-1], flush=True)
             for level in (1, 2):
-                settings = Settings(model=model, mesh_level=level)
+                settings = Settings(mesh_level=level)
                 rows.append({"model": model, "h2": h2, "E2": E2, "mesh_level": level,
                              **_monolithic_row(scene, settings, ref)})
                 print(rows[-1], flush=True)

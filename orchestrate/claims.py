@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from .figures import load_runs
-from .interface import nodal_quadrature
+from .discretization import simpson
 
 
 class Runs:
@@ -34,14 +34,14 @@ class Runs:
             return json.load(f)
 
     def coating(self, h2, E2):
-        return pd.read_csv(os.path.join(self.folders[("elastic", h2, E2)], "coating.csv"))
+        return pd.read_csv(os.path.join(self.folders[("elastic", h2, E2)], "coating1.csv"))
 
 
 def distance(a, b):
     """||a - b|| / ||b|| for two curves given at the same interface points."""
     (xa, ya), (xb, yb) = a, b
     assert np.allclose(xa, xb), "curves on different interface points"
-    weight = nodal_quadrature(xb[::2]).weight       # the element ends are every other point
+    weight = simpson(xb[::2])[1]       # the element ends are every other point
     return float(np.sqrt(np.dot(weight, (ya - yb) ** 2) / np.dot(weight, yb ** 2)))
 
 

@@ -1,58 +1,80 @@
-"""Command line: ``python -m orchestrate solve --model shell --h2 0.125 --E2 1 --out DIR``.
+"""Command line: ``python -m orchestrate solve --scene FILE.toml --out DIR``.
 
-Lengths are in units of b and moduli in units of E. Exit status: 0 converged, 1 the
-loop diverged or stagnated (the report is in DIR/summary.json), 2 bad input or a
-missing FreeFEM, 3 a worker failed.
+Without --scene, the paper's scene (orchestrate/scenes/paper.toml). Flags override
+the file: the paper's parameters (--h2, --E2, --model, ...; orchestrate/scene_file.py's
+SHORTHANDS), any scene key with --set KEY=VALUE, and every solver setting. Lengths are
+in units of b and moduli in units of E. Exit status: 0 converged, 1 the loop diverged
+or stagnated (the report is in DIR/summary.json), 2 bad input or a missing FreeFEM,
+3 a worker failed.
 """
 
 import argparse
 from dataclasses import fields
 import signal
 import sys
+import tomllib
 
 from .freefem import FreeFemMissing
-from .scene import METHODS, MODELS, WORKERS, ParameterError, Scene, Settings
+from .scene import METHODS, MODELS, WORKERS, ParameterError, Settings
+from .scene_file import SHORTHANDS, scene_and_settings
 from .worker import WorkerError
 
-_SCENE_HELP = {
-    "length": "l, length of both bodies", "height": "h, height of both bodies",
-    "coating_length": "l2, the coating covers x1 in [0, l2]", "h2": "coating thickness",
-    "E1": "Young's modulus of Omega1", "E2": "Young's modulus of the coating",
-    "E3": "Young's modulus of Omega3", "nu1": "Poisson ratio of Omega1",
-    "nu2": "Poisson ratio of the coating", "nu3": "Poisson ratio of Omega3",
-    "shear_factor": "k' of the shell", "chi": "initial gap d = chi x1^2",
-    "stamp": "Delta, downward displacement of Omega1's top",
-}
 _SETTINGS_HELP = {
-    "model": "coating model", "theta": "penalty parameter (b/E)",
+    "theta": "penalty parameter (b/E)",
     "method": "Robin loop: accelerated active-set loop, or the paper's fixed relaxation",
     "robin": "Robin parameter gamma (E/b); default 1/theta for the paper's loop, else 2",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
-    "L divides every mesh size by L", "shell_elements": "interface elements at level 1",
+    "L divides every mesh size by L", "element_size": "interface element length at level 1 (b)",
     "workers": "persistent FreeFEM workers, or a fresh process per solve (the naive baseline)",
 }
+_CHOICES = {"model": MODELS, "method": METHODS, "workers": WORKERS}
 
 
 def _option(name):
     return "--" + name.replace("_", "-")
 
 
-def _add_dataclass_options(parser, cls, helps, title):
-    group = parser.add_argument_group(title)
-    for f in fields(cls):
+def _add_scene_options(parser):
+    group = parser.add_argument_group(
+        "scene", "the scene file, and values that override it (the paper's parameters of "
+        "METHOD.md, or any key: --set indenter.radius=50 --set coating[2].E=5)")
+    group.add_argument("--scene", help="scene file (TOML; default: the paper's scene, "
+                                       "orchestrate/scenes/paper.toml)")
+    for name, (meaning, keys) in SHORTHANDS.items():
+        kind = str if name == "model" else float
+        group.add_argument(_option(name), dest=name, type=kind, default=None,
+                           choices=_CHOICES.get(name),
+                           help=f"{meaning} (sets {', '.join(keys)})")
+    group.add_argument("--set", dest="assignments", action="append", default=[],
+                       metavar="KEY=VALUE", help="any scene key; VALUE in TOML syntax")
+
+
+def _add_settings_options(parser):
+    group = parser.add_argument_group("settings", "how the scene is solved")
+    for f in fields(Settings):
         kind = float if f.default is None else type(f.default)
-        extra = {"model": {"choices": MODELS}, "method": {"choices": METHODS},
-                 "workers": {"choices": WORKERS}}.get(f.name, {})
-        group.add_argument(_option(f.name), dest=f.name, type=kind, default=f.default,
-                           help=f"{helps[f.name]} (default {f.default})",
-                           **extra)
+        group.add_argument(_option(f.name), dest=f.name, type=kind, default=None,
+                           choices=_CHOICES.get(f.name),
+                           help=f"{_SETTINGS_HELP[f.name]} (default {f.default})")
+
+
+def parse_assignment(text):
+    """KEY=VALUE with VALUE in TOML syntax (a bare word is a string)."""
+    key, sep, value = text.partition("=")
+    if not sep or not key.strip():
+        raise ParameterError(f"--set {text!r} must read KEY=VALUE")
+    try:
+        parsed = tomllib.loads(f"value = {value.strip()}")["value"]
+    except tomllib.TOMLDecodeError:
+        parsed = value.strip()
+    return key.strip(), parsed
 
 
 def build_parser():
     parser = argparse.ArgumentParser(
         prog="python -m orchestrate",
-        description="Contact of elastic bodies with a thin partial coating, solved by the "
+        description="Contact of elastic bodies with thin partial coatings, solved by the "
                     "Robin domain decomposition method (FreeFEM workers).")
     commands = parser.add_subparsers(dest="command", required=True)
     solve = commands.add_parser(
@@ -61,8 +83,8 @@ def build_parser():
                     "interface.csv, history.csv, summary.json and VTU fields into --out.")
     solve.add_argument("--out", required=True, help="output folder")
     solve.add_argument("--quiet", action="store_true", help="no progress lines")
-    _add_dataclass_options(solve, Scene, _SCENE_HELP, "scene")
-    _add_dataclass_options(solve, Settings, _SETTINGS_HELP, "settings")
+    _add_scene_options(solve)
+    _add_settings_options(solve)
     sweep = commands.add_parser(
         "sweep", help="run a parameter sweep (a TOML file) into results/<name>/",
         description="Run every point of a sweep file (orchestrate/sweep.py explains the "
@@ -110,6 +132,14 @@ def _sweep(args):
     return 0
 
 
+def scene_from_arguments(args):
+    """The scene and settings the arguments of ``solve`` describe."""
+    overrides = {name: getattr(args, name) for name in SHORTHANDS}
+    overrides.update(parse_assignment(text) for text in args.assignments)
+    settings = {f.name: getattr(args, f.name) for f in fields(Settings)}
+    return scene_and_settings(args.scene, overrides, settings)
+
+
 def main(argv=None):
     args = build_parser().parse_args(argv)
     _terminate_on_sigterm()
@@ -122,14 +152,9 @@ def main(argv=None):
     from .solve import RunFailed, solve
 
     try:
-        scene = Scene(**{f.name: getattr(args, f.name) for f in fields(Scene)})
-        settings = Settings(**{f.name: getattr(args, f.name) for f in fields(Settings)})
-    except ParameterError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return 2
-    try:
+        scene, settings = scene_from_arguments(args)
         summary = solve(scene, settings, args.out, None if args.quiet else _progress)
-    except FreeFemMissing as error:
+    except (ParameterError, FreeFemMissing) as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
     except RunFailed as error:
@@ -141,7 +166,9 @@ def main(argv=None):
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return 130
+    descent = (f", descent {summary['descent']:.4e}" if scene.load.force is not None else "")
     print(f"converged in {summary['iterations']} iterations, {summary['wall_time_s']:.1f} s; "
-          f"contact force {summary['contact_force']:.4e}, half-width "
-          f"{summary['contact_half_width']:.3f}; results in {args.out}")
+          f"contact force {summary['total_force']:.4e}{descent}, contact zones "
+          + ", ".join(f"[{a:.3f}, {b:.3f}]" for a, b in summary["contact_zones"])
+          + f"; results in {args.out}")
     return 0

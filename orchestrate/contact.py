@@ -1,63 +1,82 @@
-"""The penalised interface laws of (16): contact on S12, bond on S23.
+"""The penalised interface laws of (16) on every contact and bond interface:
 
-    J = 1/(2 theta) int_S12 [(d - u1n - w)^-]^2 + 1/(2 theta) int_S23 |u3 - f|^2,
+    J = 1/(2 theta) int_contact [(d - u_A - u_B)^-]^2 + 1/(2 theta) int_bond |u_A - u_B|^2,
 
-with (s)^- = min(s, 0). Their derivatives are the interface stresses, compression
+with (s)^- = min(s, 0), u_A, u_B the two sides' traces (a contact's: displacements along
+each side's outward normal, the paper's u1n and w; a bond's: the coating's and the
+base's displacements). Their derivatives are the interface stresses, compression
 negative as in the paper.
 """
 
 import numpy as np
 
 
-def penetration(gap, upper_n, coating_n):
-    """s = d - u1n - w: negative where Omega1 penetrates the coating."""
-    return gap - upper_n - coating_n
+def penetration(gap, u_a, u_b):
+    """s = d - u_A - u_B: negative where the indenter penetrates its partner."""
+    return gap - u_a - u_b
 
 
-def active_set(gap, upper_n, coating_n):
-    """Psi12 of (20): 1 where the iterate penetrates, else 0."""
-    return (penetration(gap, upper_n, coating_n) < 0).astype(float)
+def contact_stress(gap, u_a, u_b, theta):
+    """sigma_n = (1/theta) (d - u_A - u_B)^-: the contact's normal stress."""
+    return np.minimum(penetration(gap, u_a, u_b), 0.0) / theta
 
 
-def contact_stress(gap, upper_n, coating_n, theta):
-    """sigma_12n = (1/theta) (d - u1n - w)^-: the normal stress on S12."""
-    return np.minimum(penetration(gap, upper_n, coating_n), 0.0) / theta
+def bond_traction(coating, base, theta):
+    """Traction the coating exerts on the base, (coating - base)/theta, in the face's
+    components (sigma_t, sigma_n)."""
+    return (np.asarray(coating) - np.asarray(base)) / theta
 
 
-def bond_traction(coating_bond, lower_bond, theta):
-    """Traction (sigma_21, sigma_22) the coating exerts on Omega3's top: (f - u3)/theta.
+def _edge(x, stress, last, step):
+    """Where a contact zone ends beyond its last loaded point ``last`` (``step`` = +1:
+    towards larger indices). Near the edge of a smooth contact the pressure goes like
+    sqrt(a - x), so p^2 is linear there: the edge is where the line through the last two
+    loaded points reaches zero, kept between the last loaded point and the next one."""
+    after, before = last + step, last - step
+    if not 0 <= after < len(x):
+        return float(x[last])
+    if not 0 <= before < len(x) or not stress[before] < 0:
+        return float(0.5 * (x[last] + x[after]))
+    p_last, p_prev = stress[last] ** 2, stress[before] ** 2
+    if p_prev <= p_last:
+        return float(0.5 * (x[last] + x[after]))
+    a = x[last] + p_last * (x[last] - x[before]) / (p_prev - p_last)
+    low, high = sorted((x[last], x[after]))
+    return float(min(max(a, low), high))
 
-    Its second component is sigma_23n, the normal stress on S23."""
-    return (np.asarray(coating_bond) - np.asarray(lower_bond)) / theta
+
+def contact_zones(x, stress):
+    """[(start, end)] of every stretch of consecutive loaded points (points ordered
+    along the face); a zone that reaches the first or last point ends there."""
+    loaded = stress < 0
+    zones, i = [], 0
+    while i < len(x):
+        if not loaded[i]:
+            i += 1
+            continue
+        j = i
+        while j + 1 < len(x) and loaded[j + 1]:
+            j += 1
+        zones.append((_edge(x, stress, i, -1), _edge(x, stress, j, +1)))
+        i = j + 1
+    return zones
 
 
 def contact_half_width(x, stress):
-    """Half-width a of the contact zone, zero without contact.
-
-    Near the edge of a smooth contact the pressure goes like sqrt(a - x), so p^2 is
-    linear there: a is where the line through the last two loaded points reaches zero,
-    kept between the last loaded point and the next (unloaded) one."""
-    loaded = np.flatnonzero(stress < 0)
-    if len(loaded) == 0:
+    """Half-width a of a contact zone that starts on the symmetry axis (the first
+    point), zero without contact there."""
+    zones = contact_zones(x, stress)
+    if not zones or x[0] != zones[0][0] or not stress[0] < 0:
         return 0.0
-    last = loaded[-1]
-    if last + 1 >= len(x):
-        return float(x[last])
-    if len(loaded) < 2 or loaded[-2] != last - 1:
-        return float(0.5 * (x[last] + x[last + 1]))
-    p_last, p_prev = stress[last] ** 2, stress[last - 1] ** 2
-    if p_prev <= p_last:
-        return float(0.5 * (x[last] + x[last + 1]))
-    a = x[last] + p_last * (x[last] - x[last - 1]) / (p_prev - p_last)
-    return float(min(max(a, x[last]), x[last + 1]))
+    return zones[0][1]
 
 
-def updated_active_set(psi, gap, upper_n, coating_n, traction):
-    """Semi-smooth Newton update of Psi12 from a solution computed with Psi.
+def updated_active_set(psi, penetration, traction):
+    """Semi-smooth Newton update of Psi12 from a solution computed with Psi, given its
+    penetration d - u1n - w and contact traction.
 
     An active point stays active while its contact traction is compressive; an inactive
     one enters where the bodies interpenetrate. At a solution of the penalised problem
     this is Psi = [d - u1n - w < 0]; before it, the traction is the better judge on the
     active points, where the penetration is a difference of nearly equal traces."""
-    penetrating = penetration(gap, upper_n, coating_n) < 0
-    return np.where(psi > 0, traction < 0, penetrating).astype(float)
+    return np.where(psi > 0, traction < 0, penetration < 0).astype(float)

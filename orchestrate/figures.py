@@ -21,6 +21,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from .paths import RESULTS_DIR  # noqa: E402
+from .scene import scene_from_dict  # noqa: E402
+from .scene_file import shorthand_values  # noqa: E402
 
 # Every scene the three figures need, (model, h2, E2): the same list as the Makefile's
 # FIG3_RUNS, FIG4_RUNS and FIG5_RUNS together (tests/test_paper_claims.py checks it).
@@ -40,9 +42,10 @@ def load_runs(folders):
         folder = folder[:-len("summary.json")] if folder.endswith("summary.json") else folder
         with open(os.path.join(folder, "summary.json")) as f:
             summary = json.load(f)
-        rows.append({"model": summary["settings"]["model"], "h2": summary["scene"]["h2"],
-                     "E2": summary["scene"]["E2"], "height": summary["scene"]["height"],
-                     "folder": folder, "converged": summary["converged"]})
+        values = shorthand_values(scene_from_dict(summary["scene"]))
+        rows.append({"model": values["model"], "h2": values["h2"], "E2": values["E2"],
+                     "height": values["height"], "folder": folder,
+                     "converged": summary["converged"]})
     runs = pd.DataFrame(rows)
     if not runs["converged"].all():
         raise SystemExit("some runs did not converge: " + ", ".join(runs[~runs.converged].folder))
@@ -115,8 +118,8 @@ def fig4(runs, out_dir):
 
 
 def coating_field(folder):
-    """Nodal sigma_eq of the 2D coating: x1, x2 and sigma_eq (coating.csv)."""
-    return pd.read_csv(os.path.join(folder, "coating.csv"))
+    """Nodal sigma_eq of the 2D coating: x1, x2 and sigma_eq (coating1.csv)."""
+    return pd.read_csv(os.path.join(folder, "coating1.csv"))
 
 
 def fig5(runs, out_dir):

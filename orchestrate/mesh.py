@@ -1,146 +1,308 @@
-"""Meshes of the bodies and of the 2D coating, written for FreeFEM with meshio.
+"""Meshes of the bodies (gmsh) and of the 2D coatings (structured), written for FreeFEM
+with meshio.
 
-Omega1 and Omega3 are rectangles meshed by gmsh with triangles graded towards the face
-that touches the coating, as in the paper (about 1372 and 1349 triangles at mesh level
-1). Along the coated part of that face, [0, l2], the mesh has exactly the interface
-nodes: ``interface_elements`` equal edges, each of them one shell element, or one column
-of the 2D coating's structured mesh.
+A body's face is the sequence of pieces of its BodyPlan (orchestrate/discretization.py):
+an interface piece is meshed with exactly its vertices, one edge per interface element,
+so that both sides of an interface have their nodes at the same points; free pieces
+are meshed by gmsh. Triangles are graded away from the face, as in the paper (about
+1372 and 1349 triangles per body at mesh level 1): the size is the face's element size
+near the interfaces and the free face as far again as they reach, and grows by GROWTH
+per unit distance from there, up to a maximum. A mirror-symmetric body is meshed on
+x1 >= 0 and mirrored, so that its mesh is mirror-symmetric too.
 """
 
 from contextlib import contextmanager
+import math
 from pathlib import Path
 import signal
 import threading
-
-import math
 
 import gmsh
 import meshio
 import numpy as np
 
+from .discretization import GROWTH
 from .labels import LABELS
 
-# Mesh size near the coated face at level 1 is l2 / 32; it grows by GROWTH per unit
-# distance from that face up to MAX_SIZE. These two numbers give the paper's ~1370
-# triangles per body.
-GROWTH = 0.115
-MAX_SIZE = 0.5
 
+# ---- the 2D coating ---------------------------------------------------------------------
 
-# The 2D coating: one layer of cells per b/8 of height, as the paper's 64 ... 512
-# triangles for h2 = b/8 ... b, and at least one layer; a cell at most MAX_ASPECT times
-# as wide as it is high, so a thin coating refines the interface, and with it the
-# bodies' coated faces (the cost the paper alludes to for h2 <= b/16).
-COATING_LAYER_HEIGHT = 0.125
-MAX_ASPECT = 2.0
-
-
-def interface_nodes(coating_length, elements):
-    """Node abscissae of the shell and of the bodies on S12 and S32."""
-    return np.linspace(0.0, coating_length, elements + 1)
-
-
-def coating_layers(scene, settings):
-    """Layers of cells across the 2D coating."""
-    return settings.mesh_level * max(1, round(scene.h2 / COATING_LAYER_HEIGHT))
-
-
-def interface_elements(scene, settings):
-    """Elements along S12 and S23: 32 per mesh level, more for a thin 2D coating."""
-    elements = settings.shell_elements * settings.mesh_level
-    if settings.model == "elastic":
-        layer_height = scene.h2 / coating_layers(scene, settings)
-        elements = max(elements, math.ceil(scene.coating_length / (MAX_ASPECT * layer_height)))
-    return elements
-
-
-def coating_mesh(scene, settings):
-    """Structured triangle mesh of the 2D coating [0, l2] x [h, h + h2], two triangles per
-    cell; its top (Contact) and bottom (Bond) carry exactly the interface nodes."""
-    columns = interface_elements(scene, settings)
-    layers = coating_layers(scene, settings)
-    x = interface_nodes(scene.coating_length, columns)
-    y = scene.height + scene.h2 * np.arange(layers + 1) / layers
-    y[-1] = scene.height + scene.h2          # the contact face exactly where Omega1's is
-    points = np.array([(xi, yj) for yj in y for xi in x])
+def coating_mesh(plan):
+    """Structured triangle mesh of a 2D coating patch: columns at the patch's element
+    ends, ``layers`` layers of cells up to its thickness, two triangles per cell (the
+    diagonal mirrored left of x1 = 0); its bottom (Bond) and top carry exactly the
+    interface nodes."""
+    columns = len(plan.nodes) - 1
+    offsets = plan.thickness * np.arange(plan.layers + 1) / plan.layers
+    offsets[-1] = plan.thickness
+    points = np.vstack([plan.face.point(plan.nodes, offset) for offset in offsets])
     node = lambda i, j: j * (columns + 1) + i  # noqa: E731
     triangles = []
-    for j in range(layers):
+    for j in range(plan.layers):
         for i in range(columns):
             a, b, c, d = node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)
-            triangles += [(a, b, c), (a, c, d)]
+            if plan.nodes[i] + plan.nodes[i + 1] < 0:
+                triangles += [(a, b, d), (b, c, d)]
+            else:
+                triangles += [(a, b, c), (a, c, d)]
     edges = {
         "Bond": [(node(i, 0), node(i + 1, 0)) for i in range(columns)],
-        "Free": [(node(columns, j), node(columns, j + 1)) for j in range(layers)],
-        "Contact": [(node(i + 1, layers), node(i, layers)) for i in range(columns)],
-        "Symmetry": [(node(0, j + 1), node(0, j)) for j in range(layers)],
+        "end": [(node(columns, j), node(columns, j + 1)) for j in range(plan.layers)],
+        "top": [(node(i + 1, plan.layers), node(i, plan.layers)) for i in range(columns)],
+        "start": [(node(0, j + 1), node(0, j)) for j in range(plan.layers)],
     }
+    label = {"Bond": "Bond", "end": "Free", "top": plan.top_label, "start": plan.start_label}
     lines = np.array([edge for name in edges for edge in edges[name]])
-    line_refs = np.concatenate([np.full(len(edges[name]), LABELS[name]) for name in edges])
-    return meshio.Mesh(points, [("line", lines), ("triangle", np.array(triangles))],
+    line_refs = np.concatenate([np.full(len(edges[name]), LABELS[label[name]]) for name in edges])
+    triangles = _counterclockwise(points, np.array(triangles))
+    return meshio.Mesh(points, [("line", lines), ("triangle", triangles)],
                        cell_data={"medit:ref": [line_refs, np.full(len(triangles), 1)]})
 
 
-def body_mesh(scene, settings, body):
-    """Triangle mesh of Omega1 (``body="upper"``), Omega3 (``"lower"``) or, for the scene
-    without coating, Omega3 grown by h2 and touching Omega1 (``"lower-uncoated"``)."""
-    if body not in ("upper", "lower", "lower-uncoated"):
-        raise ValueError(f"body must be 'upper', 'lower' or 'lower-uncoated', not {body!r}")
-    level = settings.mesh_level
-    elements = interface_elements(scene, settings)
-    l, h, l2 = scene.length, scene.height, scene.coating_length
-    if body == "upper":   # Omega1 = [0, l] x [h + h2, 2h + h2]; coated face at the bottom
-        y_face, y_far = h + scene.h2, 2 * h + scene.h2
-        face_label, far_label = "Contact", "Stamp"
-    elif body == "lower":  # Omega3 = [0, l] x [0, h]; coated face at the top
-        y_face, y_far = h, 0.0
-        face_label, far_label = "Bond", "Clamped"
-    else:                  # [0, l] x [0, h + h2], in contact with Omega1 itself
-        y_face, y_far = h + scene.h2, 0.0
-        face_label, far_label = "Contact", "Clamped"
-    interface_size = l2 / elements
+# ---- bodies -----------------------------------------------------------------------------
 
+def body_mesh(plan):
+    """Triangle mesh of a body from its plan (an indenter, a block or a roller)."""
+    if plan.mirror:
+        return _mirrored(_gmsh_body(plan))
+    return _gmsh_body(plan)
+
+
+class _Outline:
+    """Points and curves of one gmsh model, points shared where they coincide."""
+
+    def __init__(self, scale):
+        self.geo = gmsh.model.geo
+        self.points = []          # (x, y, tag)
+        self.tolerance = 1e-12 * scale
+        self.labels = {}          # label -> curve tags, in order of first use
+        self.face_curves = []     # curves the size field measures the distance to
+        self.sequence = []        # every curve, in the order made
+        self.centre = None
+
+    def point(self, xy):
+        x, y = float(xy[0]), float(xy[1])
+        for px, py, tag in self.points:
+            if abs(px - x) <= self.tolerance and abs(py - y) <= self.tolerance:
+                return tag
+        tag = self.geo.addPoint(x, y, 0)
+        self.points.append((x, y, tag))
+        return tag
+
+    def curve(self, tag, label, face=False):
+        self.sequence.append(tag)
+        self.labels.setdefault(label, []).append(tag)
+        if face:
+            self.face_curves.append(tag)
+        return tag
+
+    def line(self, a, b, label, face=False):
+        return [self.curve(self.geo.addLine(self.point(a), self.point(b)), label, face)]
+
+    def arc(self, a, b, label, face=False):
+        """Arcs about the origin from a to b (clockwise when going from a to b at
+        increasing arc length on the face), in pieces of at most 90 degrees."""
+        if self.centre is None:
+            self.centre = self.geo.addPoint(0, 0, 0)
+        radius = math.hypot(*a)
+        start, end = math.atan2(a[0], a[1]), math.atan2(b[0], b[1])
+        if end <= start:
+            end += 2 * math.pi
+        pieces = max(1, math.ceil((end - start) / (math.pi / 2) - 1e-9))
+        angles = np.linspace(start, end, pieces + 1)
+        corners = [a] + [radius * np.array([math.sin(t), math.cos(t)]) for t in angles[1:-1]] + [b]
+        return [self.curve(self.geo.addCircleArc(self.point(p), self.centre, self.point(q)),
+                           label, face) for p, q in zip(corners, corners[1:])]
+
+
+def _face_curves(outline, plan):
+    """The face's curves from its start to its end; returns the interface curves whose
+    nodes must be exactly their vertices (transfinite lines) and the node count."""
+    transfinite = []
+    interface_points = [p.points for p in plan.face if p.label != "Free"]
+    for k, piece in enumerate(plan.face):
+        if piece.label != "Free":
+            if piece.uniform:
+                tag = outline.line(piece.points[0], piece.points[-1], piece.label, face=True)[0]
+                transfinite.append((tag, len(piece.points)))
+            else:
+                for a, b in zip(piece.points, piece.points[1:]):
+                    tag = outline.line(a, b, piece.label, face=True)[0]
+                    transfinite.append((tag, 2))
+            continue
+        for near, a, b in _split_free(piece, plan, interface_points):
+            if piece.curve == "arc":
+                outline.arc(a, b, "Free", face=near)
+            elif piece.curve == "profile":
+                xs = np.linspace(a[0], b[0], max(2, math.ceil(abs(b[0] - a[0]) / (4 * plan.face_size)) + 1))
+                heights = plan.lowest + plan.indenter.sag(xs - plan.indenter.centre)
+                heights[0], heights[-1] = a[1], b[1]
+                profile = np.column_stack([xs, heights])
+                for p, q in zip(profile, profile[1:]):
+                    outline.line(p, q, "Free", face=near)
+            else:
+                outline.line(a, b, "Free", face=near)
+    return transfinite
+
+
+def _split_free(piece, plan, interface_points):
+    """A free piece as (near the interfaces?, start, end) parts: the part within
+    ``plan.near`` of an interface vertex is refined like the face."""
+    a, b = piece.points[0], piece.points[-1]
+    if not interface_points:
+        return [(False, a, b)]
+    vertices = np.vstack(interface_points)
+    touches_a = np.min(np.linalg.norm(vertices - a, axis=1)) < 1e-9 * (1 + plan.near)
+    touches_b = np.min(np.linalg.norm(vertices - b, axis=1)) < 1e-9 * (1 + plan.near)
+    length = _curve_length(piece, a, b)
+    if length <= plan.near * (1 + 1e-9) and (touches_a or touches_b):
+        return [(True, a, b)]
+    parts, start, stop = [], 0.0, length
+    if touches_a:
+        start = plan.near
+    if touches_b:
+        stop = length - plan.near
+    if start >= stop:
+        return [(True, a, b)]
+    cut_a, cut_b = _along(piece, a, b, start), _along(piece, a, b, stop)
+    if touches_a:
+        parts.append((True, a, cut_a))
+    parts.append((False, cut_a if touches_a else a, cut_b if touches_b else b))
+    if touches_b:
+        parts.append((True, cut_b, b))
+    return parts
+
+
+def _curve_length(piece, a, b):
+    if piece.curve == "arc":
+        start, end = math.atan2(a[0], a[1]), math.atan2(b[0], b[1])
+        if end <= start:
+            end += 2 * math.pi
+        return math.hypot(*a) * (end - start)
+    return float(np.linalg.norm(b - a)) if piece.curve == "line" else abs(b[0] - a[0])
+
+
+def _along(piece, a, b, distance):
+    """The point ``distance`` along a free piece from a."""
+    if piece.curve == "arc":
+        radius = math.hypot(*a)
+        angle = math.atan2(a[0], a[1]) + distance / radius
+        return radius * np.array([math.sin(angle), math.cos(angle)])
+    fraction = distance / _curve_length(piece, a, b)
+    return a + fraction * (b - a)
+
+
+def _gmsh_body(plan):
+    scale = max(abs(plan.left), abs(plan.right), abs(plan.far), plan.radius, 1.0)
     with _gmsh_session():
         gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add(body)
+        gmsh.model.add(plan.shape)
+        outline = _Outline(scale)
+        transfinite = _face_curves(outline, plan)
+        loops = _close_outline(outline, plan)
         geo = gmsh.model.geo
-        corner = geo.addPoint(0, y_face, 0)
-        coating_end = geo.addPoint(l2, y_face, 0)
-        face_end = geo.addPoint(l, y_face, 0)
-        far_right = geo.addPoint(l, y_far, 0)
-        far_left = geo.addPoint(0, y_far, 0)
-        coated = geo.addLine(corner, coating_end)
-        uncoated = geo.addLine(coating_end, face_end) if l2 < l else None
-        right = geo.addLine(face_end, far_right)
-        far = geo.addLine(far_right, far_left)
-        left = geo.addLine(far_left, corner)
-        face_curves = [c for c in (coated, uncoated) if c is not None]
-        surface = geo.addPlaneSurface([geo.addCurveLoop(face_curves + [right, far, left])])
+        surface = geo.addPlaneSurface([geo.addCurveLoop(loop) for loop in loops])
         geo.synchronize()
-
-        gmsh.model.mesh.setTransfiniteCurve(coated, elements + 1)
+        for tag, nodes in transfinite:
+            gmsh.model.mesh.setTransfiniteCurve(tag, nodes)
+        level = plan.mesh_level
         fields = gmsh.model.mesh.field
         distance = fields.add("Distance")
-        fields.setNumbers(distance, "CurvesList", face_curves)
+        fields.setNumbers(distance, "CurvesList", outline.face_curves)
         fields.setNumber(distance, "Sampling", 100 * level)
         size = fields.add("MathEval")
-        fields.setString(size, "F", f"Min({interface_size} + {GROWTH / level}*F{distance}, "
-                                    f"{MAX_SIZE / level})")
+        fields.setString(size, "F", f"Min({plan.face_size} + {GROWTH / level}*F{distance}, "
+                                    f"{plan.max_size / level})")
         fields.setAsBackgroundMesh(size)
         for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints",
                        "MeshSizeFromCurvature"):
             gmsh.option.setNumber(f"Mesh.{option}", 0)
         gmsh.option.setNumber("Mesh.Algorithm", 6)  # Frontal-Delaunay: well-shaped triangles
-
-        groups = {face_label: [coated], far_label: [far], "Symmetry": [left],
-                  "Free": [c for c in (uncoated, right) if c is not None]}
-        for name, curves in groups.items():
+        for name, curves in outline.labels.items():
             gmsh.model.addPhysicalGroup(1, curves, LABELS[name], name=name)
-        gmsh.model.addPhysicalGroup(2, [surface], 1, name=body)
+        gmsh.model.addPhysicalGroup(2, [surface], 1, name=plan.shape)
         gmsh.model.mesh.generate(2)
         mesh = _to_meshio()
-    _snap_to_interface_nodes(mesh.points, y_face, interface_nodes(l2, elements), interface_size)
+    _snap_to_face(mesh.points, plan)
     return mesh
+
+
+def _close_outline(outline, plan):
+    """The curves after the face, closing the outline; returns the curve loops."""
+    face_curves = list(outline.sequence)
+    first = plan.face[0].points[0]
+    last = plan.face[-1].points[-1]
+    side = "Symmetry" if plan.half or plan.mirror else "Free"
+    if plan.shape in ("indenter", "block"):
+        far_label = "Stamp" if plan.shape == "indenter" else "Clamped"
+        right = outline.line(last, (plan.right, plan.far), "Free")
+        far = outline.line((plan.right, plan.far), (plan.left, plan.far), far_label)
+        left = outline.line((plan.left, plan.far), first, side)
+        # group order as the paper's meshes were built: face, far side, symmetry, free
+        _reorder(outline.labels, far_label, side)
+        return [face_curves + right + far + left]
+    radius, bore = plan.radius, plan.bore
+    if plan.half or plan.mirror:
+        down = outline.line(last, (0.0, -bore), "Symmetry")
+        shaft = outline.arc(np.array([0.0, bore]), np.array([0.0, -bore]), "Clamped")
+        up = outline.line((0.0, bore), first, "Symmetry")
+        return [face_curves + down + [-tag for tag in reversed(shaft)] + up]
+    shaft = outline.arc(np.array([0.0, -bore]), np.array([0.0, bore]), "Clamped")
+    shaft += outline.arc(np.array([0.0, bore]), np.array([0.0, -bore]), "Clamped")
+    return [face_curves, shaft]
+
+
+def _reorder(labels, far_label, side):
+    order = [name for name in labels if name not in (far_label, side, "Free")]
+    order += [far_label, side] + (["Free"] if "Free" in labels else [])
+    items = {name: labels[name] for name in order if name in labels}
+    labels.clear()
+    labels.update(items)
+
+
+def _snap_to_face(points, plan):
+    """Put the face's nodes exactly where the interfaces have them (gmsh is off by
+    ~1e-12 inside transfinite lines), and a flat face's nodes exactly on its line."""
+    vertices = np.vstack([p.points for p in plan.face if p.label != "Free"])
+    spacing = plan.face_size
+    heights = {float(y) for p in plan.face for y in p.points[:, 1]}
+    if len(heights) == 1 and all(p.curve in ("edges", "line") for p in plan.face):
+        y_face = heights.pop()
+        on_face = np.abs(points[:, 1] - y_face) < 1e-9 * spacing
+        x_nodes = vertices[:, 0]
+        for i in np.flatnonzero(on_face):
+            nearest = np.argmin(np.abs(x_nodes - points[i, 0]))
+            if abs(x_nodes[nearest] - points[i, 0]) < 1e-6 * spacing:
+                points[i, 0] = x_nodes[nearest]
+            points[i, 1] = y_face
+        return
+    for i, point in enumerate(points):
+        distance = np.linalg.norm(vertices - point, axis=1)
+        nearest = np.argmin(distance)
+        if distance[nearest] < 1e-6 * spacing:
+            points[i] = vertices[nearest]
+
+
+def _mirrored(mesh):
+    """A mesh of x1 >= 0 with its mirror image; the symmetry edges become interior."""
+    points = mesh.points
+    on_axis = points[:, 0] == 0.0
+    mirror_index = np.arange(len(points))
+    off_axis = np.flatnonzero(~on_axis)
+    mirror_index[off_axis] = len(points) + np.arange(len(off_axis))
+    mirrored_points = points[off_axis] * np.array([-1.0, 1.0])
+    all_points = np.vstack([points, mirrored_points])
+    triangles = mesh.cells_dict["triangle"]
+    lines = mesh.cells_dict["line"]
+    line_refs = mesh.cell_data_dict["medit:ref"]["line"]
+    keep = line_refs != LABELS["Symmetry"]
+    lines, line_refs = lines[keep], line_refs[keep]
+    all_triangles = np.vstack([triangles, mirror_index[triangles][:, [0, 2, 1]]])
+    all_lines = np.vstack([lines, mirror_index[lines][:, [1, 0]]])
+    all_refs = np.concatenate([line_refs, line_refs])
+    triangle_refs = mesh.cell_data_dict["medit:ref"]["triangle"]
+    return meshio.Mesh(all_points, [("line", all_lines), ("triangle", all_triangles)],
+                       cell_data={"medit:ref": [all_refs, np.concatenate([triangle_refs] * 2)]})
 
 
 @contextmanager
@@ -159,16 +321,6 @@ def _gmsh_session():
         for sig, handler in handlers.items():
             if handler is not None:
                 signal.signal(sig, handler)
-
-
-def _snap_to_interface_nodes(points, y_face, nodes, spacing):
-    """Put the coated face's nodes exactly on the shell's nodes (gmsh is off by ~1e-12)."""
-    on_face = np.abs(points[:, 1] - y_face) < 1e-9 * spacing
-    for i in np.flatnonzero(on_face):
-        nearest = np.argmin(np.abs(nodes - points[i, 0]))
-        if abs(nodes[nearest] - points[i, 0]) < 1e-6 * spacing:
-            points[i, 0] = nodes[nearest]
-        points[i, 1] = y_face
 
 
 def _to_meshio():
@@ -191,7 +343,12 @@ def _to_meshio():
             connectivity = _counterclockwise(points, connectivity)
         cells.append((kind, connectivity))
         refs.append(np.concatenate(block_refs))
-    return meshio.Mesh(points, cells, cell_data={"medit:ref": refs})
+    # only the triangles' nodes (gmsh also meshes the centre point of circle arcs)
+    used = np.zeros(len(points), dtype=bool)
+    used[cells[1][1].ravel()] = True
+    renumber = np.cumsum(used) - 1
+    cells = [(kind, renumber[connectivity]) for kind, connectivity in cells]
+    return meshio.Mesh(points[used], cells, cell_data={"medit:ref": refs})
 
 
 def _counterclockwise(points, triangles):

@@ -1,8 +1,9 @@
 """The monolithic solve of the discrete penalised problem (freefem/monolithic.edp).
 
-All three subdomains in one matrix, the contact set iterated to a fixed point. It
-solves the same discrete problem as the Robin loop (same forms, same interface
-quadrature), which makes it the yardstick of the loop's correctness."""
+Every subdomain in one matrix, built by the workers' own FreeFEM includes, the contact
+set iterated to a fixed point. It solves the same discrete problem as the Robin loop
+(same forms, same interface points), which makes it the yardstick of the loop's
+correctness."""
 
 import os
 import tempfile
@@ -11,55 +12,89 @@ import numpy as np
 
 from . import freefem
 from .contact import bond_traction, contact_stress
+from .discretization import discretize
+from .subdomains import shell_numbers, write_inputs
 
 
-def solve_monolithic(scene, settings, files, workdir, model=None):
-    """Interface displacements of the monolithic solution, as the Robin loop's blocks:
-    ``{"upper_n", "coating_n", "coating_bond", "lower_bond"}``, plus ``solves``.
+def write_problem(problem, files, path):
+    """The problem file monolithic.edp reads (its header says the format)."""
+    scene, names = problem.scene, list(problem.subdomains)
+    load = (f"force {scene.half_force!r}" if scene.load.force is not None
+            else f"descent {scene.load.displacement!r}")
+    lines = [f"{problem.settings.theta!r} {load} {len(names)} {len(problem.interfaces)}"]
+    for name, subdomain in problem.subdomains.items():
+        if subdomain.kind == "body":
+            numbers = [subdomain.E, subdomain.nu]
+            lines.append(" ".join(["body", files[name]["mesh"], *map(repr, numbers),
+                                   files[name]["sides"]]))
+        else:
+            lines.append(" ".join(["shell", files[name]["nodes"],
+                                   *map(repr, shell_numbers(subdomain)), files[name]["sides"]]))
+    for i, interface in enumerate(problem.interfaces):
+        ends = []
+        for side in interface.sides:
+            position = [k for k, (j, _) in enumerate(problem.sides_of(side.subdomain)) if j == i]
+            ends += [names.index(side.subdomain), position[0]]
+        kind = 0 if interface.kind == "contact" else 1
+        lines.append(" ".join(map(str, [kind, *ends])))
+        lines.append(f"{interface.size} " + " ".join(map(repr, interface.gap.tolist())))
+    with open(path, "w") as out:
+        out.write("\n".join(lines) + "\n")
 
-    ``model`` overrides settings.model; "none" solves the scene without coating (then
-    ``files.lower_mesh`` must touch Omega1, and "coating_n" is its top's displacement)."""
+
+def solve_monolithic(problem, workdir):
+    """The monolithic solution's traces, {(interface index, side): trace} (shapes as the
+    Robin loop's), with "solves" and "descent"."""
+    files = write_inputs(problem, workdir)
+    problem_file = os.path.join(workdir, "problem.txt")
     output = os.path.join(workdir, "monolithic_traces.txt")
-    freefem.run_script("monolithic.edp", [
-        "-model", model or settings.model, "-coating", files.coating_mesh,
-        "-upper", files.upper_mesh, "-lower", files.lower_mesh, "-nodes", files.shell_nodes,
-        "-contact", files.contact_points, "-bond", files.bond_points,
-        "-E1", scene.E1, "-nu1", scene.nu1, "-E2", scene.E2, "-nu2", scene.nu2,
-        "-E3", scene.E3, "-nu3", scene.nu3, "-h2", scene.h2, "-kshear", scene.shear_factor,
-        "-stamp", scene.stamp, "-theta", settings.theta, "-output", output],
-        os.path.join(workdir, "monolithic.log"))
+    write_problem(problem, files, problem_file)
+    freefem.run_script("monolithic.edp", ["-problem", problem_file, "-output", output],
+                       os.path.join(workdir, "monolithic.log"))
     tokens = open(output).read().split()
-    arrays, i = [], 0
-    for _ in range(6):
-        n = int(tokens[i])
-        arrays.append(np.array(tokens[i + 1:i + 1 + n], dtype=float))
-        i += 1 + n
-    solves, settled = int(tokens[i]), int(tokens[i + 1])
+    traces, k = {}, 0
+    for i, interface in enumerate(problem.interfaces):
+        for side in (0, 1):
+            arrays = []
+            for _ in range(interface.components):
+                n = int(tokens[k])
+                arrays.append(np.array(tokens[k + 1:k + 1 + n], dtype=float))
+                k += 1 + n
+            traces[i, side] = arrays[0] if interface.components == 1 else np.array(arrays)
+    solves, settled, descent = int(tokens[k]), int(tokens[k + 1]), float(tokens[k + 2])
     if not settled:
         raise RuntimeError(f"the monolithic contact set did not settle in {solves} solves")
-    u1n, w, f1, f2, u31, u32 = arrays
-    return {"upper_n": u1n, "coating_n": w, "coating_bond": np.array([f1, f2]),
-            "lower_bond": np.array([u31, u32]), "solves": solves}
+    traces["solves"], traces["descent"] = solves, descent
+    return traces
 
 
-def monolithic_interface(scene, settings, coated=True):
-    """Monolithic interface displacements and stresses of a scene, in a private folder.
+def interface_stresses(problem, traces):
+    """{interface index: stress} from the traces by the penalty laws: a contact's
+    sigma_n = (d - u_A - u_B)^- / theta, a bond's traction on the base (u_A - u_B)/theta
+    as (sigma_t, sigma_n)."""
+    theta, stresses = problem.settings.theta, {}
+    for i, interface in enumerate(problem.interfaces):
+        a, b = traces[i, 0], traces[i, 1]
+        if interface.kind == "contact":
+            stresses[i] = contact_stress(interface.gap, a, b, theta)
+        else:
+            stresses[i] = bond_traction(a, b, theta)
+    return stresses
 
-    Returns the traces of ``solve_monolithic`` plus "x1", "sigma_12n" and "sigma_23n"
-    (the penalty laws evaluated on the traces). ``coated=False`` solves the same scene
-    without its coating: Omega3 grown by h2 touches Omega1 on the same contact points."""
-    from .mesh import body_mesh, write_medit
-    from .subdomains import write_inputs   # meshes and interface points, as for the DDM
 
+def monolithic_solution(scene, settings):
+    """The monolithic solution of a scene, in a private folder: its problem, traces
+    (solve_monolithic) and interface stresses."""
+    problem = discretize(scene, settings)
     with tempfile.TemporaryDirectory(prefix="monolithic-") as workdir:
-        files, contact, bond = write_inputs(scene, settings, workdir)
-        if not coated:
-            write_medit(body_mesh(scene, settings, "lower-uncoated"), files.lower_mesh)
-        result = solve_monolithic(scene, settings, files, workdir,
-                                  model=None if coated else "none")
-    result["x1"] = contact.x
-    result["sigma_12n"] = contact_stress(contact.gap, result["upper_n"], result["coating_n"],
-                                         settings.theta)
-    result["sigma_23n"] = bond_traction(result["coating_bond"], result["lower_bond"],
-                                        settings.theta)[1]
-    return result
+        traces = solve_monolithic(problem, workdir)
+    return problem, traces, interface_stresses(problem, traces)
+
+
+def monolithic_curves(scene, settings):
+    """x1, sigma_12n and sigma_23n of the monolithic solve of a scene of the paper's kind
+    (one contact interface, one bond), and its number of solves."""
+    problem, traces, stresses = monolithic_solution(scene, settings)
+    contact, bond = problem.contacts[0], problem.bonds[0]
+    return (contact.position[:, 0], stresses[problem.interfaces.index(contact)],
+            stresses[problem.interfaces.index(bond)][1], traces["solves"])

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import meshio
 import numpy as np
+import pandas as pd
 
 
 def _atomic(path):
@@ -50,16 +51,25 @@ def read_reactions(path):
     return reactions
 
 
-def write_shell_vtu(fields_csv, y_midline, path):
-    """The shell's mid-line as a VTU polyline with v, w, gamma and its forces."""
-    data = np.genfromtxt(fields_csv, delimiter=",", names=True)
-    points = np.column_stack([data["x1"], np.full(len(data), y_midline), np.zeros(len(data))])
+def write_shell_fields(fields_csv, spec, vtu_path):
+    """Complete a shell worker's fields file (xi, v, w, gamma, T11, T13, M11 along the
+    mid-line) with the mid-line's place x1, x2, and write it as a VTU polyline with the
+    displacement v t + w n in global components, gamma and the forces."""
+    data = pd.read_csv(fields_csv)
+    s = spec.s_start + data["xi"].to_numpy() / spec.stretch
+    place = spec.face.point(s, 0.5 * spec.thickness)
+    tangent, normal = spec.face.tangent(s), spec.face.normal(s)
+    data.insert(1, "x1", place[:, 0])
+    data.insert(2, "x2", place[:, 1])
+    write_csv(fields_csv, {name: data[name].to_numpy() for name in data.columns})
+    displacement = data["v"].to_numpy()[:, None] * tangent + data["w"].to_numpy()[:, None] * normal
+    points = np.column_stack([place, np.zeros(len(data))])
     lines = np.column_stack([np.arange(len(data) - 1), np.arange(1, len(data))])
-    keep = np.diff(data["x1"]) > 0       # samples repeat the nodes: skip zero-length cells
-    point_data = {"displacement": np.column_stack([data["v"], data["w"], np.zeros(len(data))])}
+    keep = np.diff(data["xi"].to_numpy()) > 0   # samples repeat the nodes: skip zero-length cells
+    point_data = {"displacement": np.column_stack([displacement, np.zeros(len(data))])}
     for name in ("gamma", "T11", "T13", "M11"):
-        point_data[name] = data[name]
-    path, partial = _atomic(path)
+        point_data[name] = data[name].to_numpy()
+    path, partial = _atomic(vtu_path)
     meshio.write(partial, meshio.Mesh(points, [("line", lines[keep])], point_data=point_data),
                  file_format="vtu")
     os.replace(partial, path)

@@ -19,7 +19,8 @@ import pandas as pd
 
 from .figures import FIGURE_SCENES
 from .paths import RESULTS_DIR
-from .scene import Scene, Settings
+from .scene import Settings
+from .scene_file import paper_scene
 from .solve import RunFailed, solve
 
 
@@ -44,10 +45,10 @@ def main(argv=None):
     args = parser.parse_args(argv)
     rows = []
     for model, h2, E2 in FIGURE_SCENES:
-        scene = Scene(h2=h2, E2=E2)
-        converged = _run(scene, Settings(model=model))
-        paper = _run(scene, Settings(model=model, method="paper", eps_u=1e-3, rho=0.5))
-        loose = _run(scene, Settings(model=model, eps_u=1e-3))
+        scene = paper_scene(h2=h2, E2=E2, model=model)
+        converged = _run(scene, Settings())
+        paper = _run(scene, Settings(method="paper", eps_u=1e-3, rho=0.5))
+        loose = _run(scene, Settings(eps_u=1e-3))
         rows.append({
             "model": model, "h2": h2, "E2": E2,
             "paper_loop_1e-3": paper["iterations"],

@@ -18,10 +18,11 @@ import numpy as np
 import pandas as pd
 
 from .claims import distance
-from .monolithic import monolithic_interface
+from .monolithic import monolithic_curves
 from .outputs import write_csv
 from .paths import RESULTS_DIR
-from .scene import Scene, Settings
+from .scene import Settings
+from .scene_file import paper_scene
 
 PEAK_TOLERANCE = 0.002
 MIN_LEVEL = 3          # one level above the finest benchmarked mesh (2)
@@ -38,11 +39,10 @@ def compute_reference(scene, out_dir, progress=print):
     rows, previous = [], None
     for level in range(1, MAX_LEVEL + 1):
         start = time.perf_counter()
-        settings = Settings(model="elastic", mesh_level=level, theta=BASE_THETA / level)
-        result = monolithic_interface(scene, settings)
-        contact = (result["x1"], result["sigma_12n"])
-        interface = (result["x1"], result["sigma_23n"])
-        row = {"level": level, "theta": settings.theta, "points": len(result["x1"]),
+        settings = Settings(mesh_level=level, theta=BASE_THETA / level)
+        x1, sigma_12n, sigma_23n, _ = monolithic_curves(scene, settings)
+        contact, interface = (x1, sigma_12n), (x1, sigma_23n)
+        row = {"level": level, "theta": settings.theta, "points": len(x1),
                "peak_sigma_12n": float(np.min(contact[1])),
                "seconds": time.perf_counter() - start}
         if previous is not None:
@@ -74,7 +74,7 @@ def reference(h2, E2, progress=print):
     out_dir = reference_dir(h2, E2)
     if os.path.exists(os.path.join(out_dir, "reference.csv")):
         return load_reference(out_dir)
-    return compute_reference(Scene(h2=h2, E2=E2), out_dir, progress)[1]
+    return compute_reference(paper_scene(h2=h2, E2=E2, model="elastic"), out_dir, progress)[1]
 
 
 def main(argv=None):
@@ -82,7 +82,8 @@ def main(argv=None):
     parser.add_argument("--h2", type=float, default=0.125)
     parser.add_argument("--E2", type=float, default=1.0)
     args = parser.parse_args(argv)
-    table, _ = compute_reference(Scene(h2=args.h2, E2=args.E2), reference_dir(args.h2, args.E2))
+    table, _ = compute_reference(paper_scene(h2=args.h2, E2=args.E2, model="elastic"),
+                                 reference_dir(args.h2, args.E2))
     print(table.to_string(index=False))
 
 

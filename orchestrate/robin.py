@@ -39,60 +39,68 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .acceleration import Anderson
-from .contact import active_set, updated_active_set
+from .contact import penetration, updated_active_set
+from .state import StateLayout
 
 
-def robin_data(layout, x, gap, theta, gamma, psi, hold_inactive=False):
-    """Robin coefficients and data of every subdomain for the state x^k and contact set Psi.
+def robin_data(problem, layout, x, psi, theta, gamma, hold_inactive=False):
+    """Robin coefficients and data of every side of every interface, for the state x^k
+    and the contact set Psi (concatenated over the contact interfaces).
 
-    Interface laws (16): on S12 where Psi = 1, t = (d - u1n - w)/theta on both sides
-    (normal tractions, compression negative), elsewhere t = 0; on S23 the traction on
-    Omega3 is (f - u3)/theta and on the coating (u3 - f)/theta. Solving each law for
-    one side's Robin combination t + gamma u, with c = 1 - gamma theta:
-        Omega1  on S12: alpha = gamma Psi,  g = d - w + c t_w / gamma
-        coating on S21: alpha = gamma Psi,  g = d - u1n + c t_u1n / gamma
-        coating on S23: alpha = gamma,      g = u3 - c t_3 / gamma
-        Omega3  on S32: alpha = gamma,      g = f - c t_f / gamma
+    Interface laws (16): on a contact where Psi = 1, t = (d - u_A - u_B)/theta on both
+    sides (normal tractions, compression negative), elsewhere t = 0; on a bond the
+    traction on side B is (u_A - u_B)/theta and on side A (u_B - u_A)/theta. Solving each
+    law for one side's Robin combination t + gamma u, with c = 1 - gamma theta:
+        contact, side A:  alpha = gamma Psi,  g = d - u_B + c t_B / gamma
+        contact, side B:  alpha = gamma Psi,  g = d - u_A + c t_A / gamma
+        bond, side A:     alpha = gamma,      g = u_B - c t_B / gamma
+        bond, side B:     alpha = gamma,      g = u_A - c t_A / gamma
     For gamma = 1/theta these are (21), (22), (23) with Psi u^k + (d - u1n - w)^- =
     Psi (d - neighbour) (METHOD.md, global components). At a fixed point the two sides'
     tractions t1, t2 satisfy (2 - gamma theta)(t1 + t2) = 0 and then the law; so
     gamma theta must stay away from 2 (Settings refuses gamma theta >= 1.5).
 
-    ``hold_inactive``: alpha = gamma on all of S12, and where Psi = 0 the data is the
-    side's own trace, g = u^k. The fixed point is the same (there t = gamma (u - u) = 0),
-    but no matrix depends on Psi any more: the workers factorise once per run."""
-    get = lambda name: layout.get(x, name)  # noqa: E731
+    ``hold_inactive``: alpha = gamma on all of a contact, and where Psi = 0 the data is
+    the side's own trace, g = u^k. The fixed point is the same (there t = gamma (u - u) =
+    0), but no matrix depends on Psi any more: the workers factorise once per run.
+
+    Returns ``{(i, side): (alpha, g)}``, g of shape (components, points)."""
     c = 1.0 - gamma * theta
-    alpha_contact = gamma * psi
-    alpha_bond = np.full(layout.points, gamma)
-    g_upper = gap - get("coating_n") + c * get("t_coating_n") / gamma
-    g_coating_n = gap - get("upper_n") + c * get("t_upper_n") / gamma
-    if hold_inactive:
-        alpha_contact = np.full(layout.points, gamma)
-        g_upper = np.where(psi > 0, g_upper, get("upper_n"))
-        g_coating_n = np.where(psi > 0, g_coating_n, get("coating_n"))
-    g_coating_bond = get("lower_bond") - c * get("t_lower_bond") / gamma
-    g_lower = get("coating_bond") - c * get("t_coating_bond") / gamma
-    return {
-        "upper": [alpha_contact, g_upper],
-        "coating": [alpha_contact, g_coating_n, alpha_bond, *g_coating_bond],
-        "lower": [alpha_bond, *g_lower],
-    }
+    data = {}
+    psi_of = dict((i, psi[where]) for i, where in layout.contact_slices())
+    for i, interface in enumerate(problem.interfaces):
+        u = [layout.get(x, "u", i, side) for side in (0, 1)]
+        t = [layout.get(x, "t", i, side) for side in (0, 1)]
+        for side in (0, 1):
+            other = 1 - side
+            if interface.kind == "contact":
+                alpha = gamma * psi_of[i]
+                g = interface.gap - u[other] + c * t[other] / gamma
+                if hold_inactive:
+                    alpha = np.full(interface.size, gamma)
+                    g = np.where(psi_of[i] > 0, g, u[side])
+                g = g[None, :]
+            else:
+                alpha = np.full(interface.size, gamma)
+                g = u[other] - c * t[other] / gamma
+            data[i, side] = (alpha, g)
+    return data
 
 
 def state_after_solve(layout, data, traces):
     """The new state: each side's traces and the traction of its Robin condition,
     t = alpha (g - u), which is exactly what that side felt in its solve."""
-    upper_n, coating_n, coating_bond, lower_bond = traces
-    alpha_c, g_upper = data["upper"]
-    _, g_coating_n, alpha_b, g_cb1, g_cb2 = data["coating"]
-    _, g_lower1, g_lower2 = data["lower"]
-    return layout.pack(
-        upper_n=upper_n, coating_n=coating_n, coating_bond=coating_bond, lower_bond=lower_bond,
-        t_upper_n=alpha_c * (g_upper - upper_n),
-        t_coating_n=alpha_c * (g_coating_n - coating_n),
-        t_coating_bond=alpha_b * (np.array([g_cb1, g_cb2]) - coating_bond),
-        t_lower_bond=alpha_b * (np.array([g_lower1, g_lower2]) - lower_bond))
+    blocks = {}
+    for (i, side), (alpha, g) in data.items():
+        u = traces[i, side]
+        blocks["u", i, side] = u
+        blocks["t", i, side] = alpha * (g - u)
+    return layout.pack(blocks)
+
+
+def contact_traction(layout, x):
+    """The mean of both sides' normal tractions at every contact point."""
+    return 0.5 * (layout.contact(x, "t", 0) + layout.contact(x, "t", 1))
 
 
 # Inner tolerance of the active-set loop while Psi may still change: enough for the
@@ -111,6 +119,7 @@ class LoopResult:
     status: str                 # converged, diverged, stagnated, max_iterations
     reason: str
     history: list = field(default_factory=list)
+    descent: float = None       # the stamp's descent in the last solve
 
 
 class ConvergenceMonitor:
@@ -155,77 +164,94 @@ class ConvergenceMonitor:
         return None
 
 
-def run_robin_loop(solve, layout, contact, scene, settings, progress=None):
+def run_robin_loop(solve, problem, settings, progress=None):
     """Iterate until converged or stopped; the workers keep the fields of the last solve.
 
-    ``solve(data)`` performs the three subdomain solves and returns the traces and each
-    worker's CPU seconds (orchestrate/subdomains.py); ``contact`` is the S12 quadrature."""
+    ``solve(data)`` performs the subdomain solves at once and returns the traces of every
+    side, each worker's CPU seconds and the stamp's descent (orchestrate/subdomains.py)."""
     loop = _PaperLoop if settings.method == "paper" else _ActiveSetLoop
-    return loop(solve, layout, contact, scene, settings, progress).run()
+    return loop(solve, problem, settings, progress).run()
+
+
+def displacement_scale(problem):
+    """The scene's scale of displacements: the largest initial gap plus the stamp's
+    descent (or, under a force, the force over the softest modulus)."""
+    scene = problem.scene
+    gap = max((float(np.max(i.gap)) for i in problem.contacts), default=0.0)
+    if scene.load.displacement is not None:
+        return scene.load.displacement + gap
+    moduli = [scene.indenter.E, scene.base.E] + [c.E for c in scene.coatings]
+    return scene.load.force / min(moduli) + gap
 
 
 class _Loop:
     """What both loops share: one Robin iteration, its history row, the monitor."""
 
     window = 500
+    hold_inactive = False
 
-    def __init__(self, solve, layout, contact, scene, settings, progress):
-        self.solve, self.layout, self.contact = solve, layout, contact
-        self.settings, self.progress = settings, progress
+    def __init__(self, solve, problem, settings, progress):
+        self.solve, self.problem, self.settings, self.progress = solve, problem, settings, progress
+        self.layout = StateLayout(problem.interfaces)
         self.gamma = settings.robin_parameter
-        self.monitor = ConvergenceMonitor(settings.max_iterations,
-                                          scene.stamp + float(np.max(contact.gap)),
+        self.monitor = ConvergenceMonitor(settings.max_iterations, displacement_scale(problem),
                                           self.window)
         self.history = []
         self.start = time.perf_counter()
-
-    hold_inactive = False
+        self.descent = None
 
     def iterate(self, x, psi):
         """Solve every subdomain for the state x and the contact set psi; return x~."""
-        data = robin_data(self.layout, x, self.contact.gap, self.settings.theta, self.gamma,
-                          psi, self.hold_inactive)
-        traces, seconds = self.solve(data)
+        data = robin_data(self.problem, self.layout, x, psi, self.settings.theta, self.gamma,
+                          self.hold_inactive)
+        traces, seconds, self.descent = self.solve(data)
         self.seconds = seconds
         return state_after_solve(self.layout, data, traces)
 
+    def penetration(self, x):
+        return penetration(self.layout.gap, self.layout.contact(x, "u", 0),
+                           self.layout.contact(x, "u", 1))
+
     def record(self, image, psi, previous_psi, change, update, status=None):
-        traction = self.layout.get(image, "t_upper_n") + self.layout.get(image, "t_coating_n")
+        layout = self.layout
+        traction = layout.contact(image, "t", 0) + layout.contact(image, "t", 1)
         row = {
             "iteration": len(self.history) + 1,
             "relative_change": change,
             "active_points": int(psi.sum()),
             "active_set_changed": previous_psi is not None and bool(np.any(psi != previous_psi)),
             "active_set_update": update,
-            "contact_force": -0.5 * self.contact.integrate(traction),
+            "contact_force": -0.5 * float(np.dot(layout.contact_weight,
+                                                 traction * layout.contact_normal_x2)),
+            "descent": self.descent,
             "seconds": time.perf_counter() - self.start,
-            "cpu_upper": self.seconds["upper"], "cpu_coating": self.seconds["coating"],
-            "cpu_lower": self.seconds["lower"], "wait": self.seconds["wait"],
-            "back_upper": self.seconds["back_upper"], "back_coating": self.seconds["back_coating"],
-            "back_lower": self.seconds["back_lower"],
+            "wait": self.seconds["wait"],
         }
+        for name in self.problem.subdomains:
+            row[f"cpu_{name}"] = self.seconds[name]
+        for name in self.problem.subdomains:
+            row[f"back_{name}"] = self.seconds[f"back_{name}"]
         self.history.append(row)
         if self.progress is not None:
             self.progress(row, status or "running")
 
     def relative_change(self, new, old):
-        weight = self.contact.weight
-        return (self.layout.displacement_norm(new - old, weight)
-                / max(self.layout.displacement_norm(new, weight), 1e-300))
+        return (self.layout.displacement_norm(new - old)
+                / max(self.layout.displacement_norm(new), 1e-300))
 
     def result(self, image, psi, status, reason):
         return LoopResult(image, psi, len(self.history), status == "converged", status,
-                          reason, self.history)
+                          reason, self.history, self.descent)
 
 
 class _PaperLoop(_Loop):
     """(21)-(24): Psi from every iterate, fixed relaxation rho."""
 
     def run(self):
-        layout, gap, rho = self.layout, self.contact.gap, self.settings.rho
+        layout, rho = self.layout, self.settings.rho
         x, previous_psi = layout.zeros(), None
         for iteration in range(1, self.settings.max_iterations + 1):
-            psi = active_set(gap, layout.get(x, "upper_n"), layout.get(x, "coating_n"))
+            psi = (self.penetration(x) < 0).astype(float)
             image = self.iterate(x, psi)
             x_new = rho * image + (1.0 - rho) * x
             change = self.relative_change(x_new, x)
@@ -255,22 +281,23 @@ class _ActiveSetLoop(_Loop):
                               # +5-10 iterations, -40 % wall time on the figure scenes)
 
     def run(self):
-        layout, gap, eps = self.layout, self.contact.gap, self.settings.eps_u
-        scale = np.where(layout.displacement_mask(), 1.0, 1.0 / self.gamma)
-        scale = scale * np.sqrt(np.tile(self.contact.weight, layout.size // layout.points))
+        layout, eps = self.layout, self.settings.eps_u
+        scale = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
+        scale = scale * np.sqrt(layout.entry_weight)
         anderson = Anderson(scale)
         x = layout.zeros()
-        psi = active_set(gap, layout.get(x, "upper_n"), layout.get(x, "coating_n"))
+        psi = (self.penetration(x) < 0).astype(float)
+        if self.problem.scene.load.force is not None:
+            # under a force, the indenter needs a support: the points it touches first
+            psi = (layout.gap <= np.min(layout.gap) + 1e-12 * np.max(layout.gap)).astype(float)
         previous_psi, update, seen = None, 0, {psi.tobytes()}
         tolerance = max(eps, ACTIVE_SET_TOLERANCE)
         for iteration in range(1, self.settings.max_iterations + 1):
             image = self.iterate(x, psi)
             change = self.relative_change(image, x)
             failure = self.monitor.check(iteration, image, change)
-            new_psi = updated_active_set(psi, gap, layout.get(image, "upper_n"),
-                                         layout.get(image, "coating_n"),
-                                         0.5 * (layout.get(image, "t_upper_n")
-                                                + layout.get(image, "t_coating_n")))
+            new_psi = updated_active_set(psi, self.penetration(image),
+                                         contact_traction(layout, image))
             psi_settled = np.array_equal(new_psi, psi)
             if change < eps and psi_settled:
                 self.record(image, psi, previous_psi, change, update, "converged")

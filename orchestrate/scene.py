@@ -1,95 +1,319 @@
-"""The scene (geometry, materials, loading) and the solver settings, as validated data.
+"""The scene (bodies, coatings, load) and the solver settings, as validated data.
 
-Lengths are in units of b and moduli in units of E (b = E = 1 internally), as in
-../METHOD.md. Both objects are checked once, on creation, and written next to every
-result so that any result can be reproduced.
+A scene is an indenter pressed on a base that carries any number of coating patches:
+
+    Indenter  the upper body: a block whose lower face has the profile of a circle or a
+              parabola of radius R (flat without a radius), pushed down at its top by a
+              rigid stamp
+    Base      the lower body: a block with a flat top, clamped at its bottom, or a roller
+              (a disk on a rigid shaft, clamped at its bore)
+    Coating   a patch on the base's top face, between two abscissae x1, modelled as a
+              Timoshenko-type shell or as a 2D elastic body
+    Load      the stamp's descent, or the total force per unit width
+
+Lengths are in units of b and moduli in units of E (METHOD.md); the scene files of
+orchestrate/scenes/ write them out (orchestrate/scene_file.py reads them). Every object
+is checked once, on creation; an error names the key (``coating[2].thickness``,
+patches counted from 1) and the allowed range. Scene and settings are written next to
+every result, so that any result can be reproduced.
 """
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field, fields, replace
 import math
 from typing import Optional
 
 MODELS = ("shell", "elastic")
+PROFILES = ("circle", "parabola")
+FACE_MESHES = ("shaped", "flat")
+SHAPES = ("block", "roller")
 METHODS = ("active-set", "paper")
 WORKERS = ("persistent", "fresh")
 DEFAULT_ROBIN = 2.0    # E/b
 
 
 class ParameterError(ValueError):
-    """A scene or settings value outside its allowed range; the message names it."""
+    """A scene or settings value outside its allowed range; the message names it.
+
+    ``key`` is the offending key (``coating[1].E``), so that callers that set it under
+    another name (a command-line flag) can say so."""
+
+    def __init__(self, message, key=None):
+        super().__init__(message)
+        self.key = key
 
 
-def _require(condition, message):
+def _require(condition, key, message):
     if not condition:
-        raise ParameterError(message)
-
-
-def _positive(name, value):
-    _require(_finite(value) and value > 0, f"{name} = {value!r} must be a positive number")
+        raise ParameterError(message, key)
 
 
 def _finite(value):
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
-def _poisson(name, value):
-    _require(_finite(value) and -1.0 < value < 0.5,
-             f"{name} = {value!r} must lie in (-1, 0.5): outside it the body has no "
+def _positive(key, value):
+    _require(_finite(value) and value > 0, key, f"{key} = {value!r} must be a positive number")
+
+
+def _poisson(key, value):
+    _require(_finite(value) and -1.0 < value < 0.5, key,
+             f"{key} = {value!r} must lie in (-1, 0.5): outside it the body has no "
              "positive elastic energy")
 
 
-def _positive_int(name, value):
-    _require(isinstance(value, int) and not isinstance(value, bool) and value >= 1,
-             f"{name} = {value!r} must be a positive integer")
+def _choice(key, value, choices):
+    _require(value in choices, key, f"{key} = {value!r} must be one of {choices}")
+
+
+def _positive_int(key, value):
+    _require(isinstance(value, int) and not isinstance(value, bool) and value >= 1, key,
+             f"{key} = {value!r} must be a positive integer")
+
+
+@dataclass(frozen=True)
+class Indenter:
+    """The upper body: x1 in [centre - width, centre + width] (a half model: [0, width]),
+    its lower face touching the scene at its lowest point, its top ``height`` above it."""
+
+    radius: float = math.inf       # R of the lower face; infinite: a flat face
+    profile: str = "circle"        # gap above the lowest point: R - sqrt(R^2 - x^2), or x^2/(2R)
+    face_mesh: str = "shaped"      # "shaped": meshed as it is; "flat": meshed flat, the
+                                   # profile only in the initial gap (the paper's Omega1)
+    width: float = 4.0             # half width (the whole width of a half model)
+    height: float = 8.0
+    centre: float = 0.0            # x1 of the lowest point (full models)
+    E: float = 1.0
+    nu: float = 0.3
+
+    def check(self, prefix):
+        _require(isinstance(self.radius, (int, float)) and not isinstance(self.radius, bool)
+                 and self.radius > 0 and not math.isnan(self.radius), prefix + "radius",
+                 f"{prefix}radius = {self.radius!r} must be a positive number (or absent: "
+                 "a flat face)")
+        _choice(prefix + "profile", self.profile, PROFILES)
+        _choice(prefix + "face_mesh", self.face_mesh, FACE_MESHES)
+        for name in ("width", "height", "E"):
+            _positive(prefix + name, getattr(self, name))
+        _poisson(prefix + "nu", self.nu)
+        _require(_finite(self.centre), prefix + "centre",
+                 f"{prefix}centre = {self.centre!r} must be a number")
+        if self.profile == "circle" and math.isfinite(self.radius):
+            _require(self.radius > self.width, prefix + "radius",
+                     f"{prefix}radius = {self.radius!r} must exceed {prefix}width = "
+                     f"{self.width!r}: a circular face cannot be wider than its circle")
+
+    @property
+    def flat(self):
+        return math.isinf(self.radius)
+
+    def sag(self, x):
+        """Height of the face above its lowest point, at a distance x from it."""
+        if self.flat:
+            return 0.0 * x
+        if self.profile == "parabola":
+            return x ** 2 / (2.0 * self.radius)
+        return self.radius - (self.radius ** 2 - x ** 2) ** 0.5
+
+    def slope(self, x):
+        """d sag / dx."""
+        if self.flat:
+            return 0.0 * x
+        if self.profile == "parabola":
+            return x / self.radius
+        return x / (self.radius ** 2 - x ** 2) ** 0.5
+
+
+@dataclass(frozen=True)
+class Base:
+    """The lower body: a block [-width, width] x [0, height] (a half model: [0, width])
+    clamped at its bottom, or a roller: a disk of ``radius`` about the origin on a rigid
+    shaft of radius ``bore`` (default radius/2), clamped there."""
+
+    shape: str = "block"
+    width: float = 4.0             # block: half width (the whole width of a half model)
+    height: float = 8.0            # block
+    radius: Optional[float] = None  # roller
+    bore: Optional[float] = None    # roller
+    E: float = 1.0
+    nu: float = 0.3
+
+    def check(self, prefix):
+        _choice(prefix + "shape", self.shape, SHAPES)
+        _positive(prefix + "E", self.E)
+        _poisson(prefix + "nu", self.nu)
+        if self.shape == "block":
+            _positive(prefix + "width", self.width)
+            _positive(prefix + "height", self.height)
+            for name in ("radius", "bore"):
+                _require(getattr(self, name) is None, prefix + name,
+                         f"{prefix}{name} = {getattr(self, name)!r} is for a roller; a "
+                         "block has width and height")
+        else:
+            _require(self.radius is not None, prefix + "radius",
+                     f"{prefix}radius is missing: a roller needs its radius")
+            _positive(prefix + "radius", self.radius)
+            if self.bore is not None:
+                _positive(prefix + "bore", self.bore)
+                _require(self.bore < 0.9 * self.radius, prefix + "bore",
+                         f"{prefix}bore = {self.bore!r} must lie in (0, 0.9 radius = "
+                         f"{0.9 * self.radius:g})")
+
+    @property
+    def shaft_radius(self):
+        return self.bore if self.bore is not None else 0.5 * self.radius
+
+    @property
+    def top(self):
+        """x1 of the top face's ends on the side x1 > 0."""
+        return self.width if self.shape == "block" else self.radius
+
+
+@dataclass(frozen=True)
+class Coating:
+    """A patch on the base's top face between the abscissae ``start`` and ``end`` (on a
+    roller: the x1 of its ends on the roller's surface)."""
+
+    start: float = 0.0
+    end: float = 2.0
+    thickness: float = 0.125
+    E: float = 1.0
+    nu: float = 0.3
+    model: str = "shell"           # "shell" (Timoshenko-type) or "elastic" (2D)
+    shear_factor: float = 5.0 / 6.0  # k' of the shell
+
+    def check(self, prefix):
+        for name in ("start", "end"):
+            _require(_finite(getattr(self, name)), prefix + name,
+                     f"{prefix}{name} = {getattr(self, name)!r} must be a number")
+        _require(self.end > self.start, prefix + "end",
+                 f"{prefix}end = {self.end!r} must exceed {prefix}start = {self.start!r}")
+        for name in ("thickness", "E", "shear_factor"):
+            _positive(prefix + name, getattr(self, name))
+        _poisson(prefix + "nu", self.nu)
+        _choice(prefix + "model", self.model, MODELS)
+
+
+@dataclass(frozen=True)
+class Load:
+    """The stamp's descent from first touch, or the total force per unit width on the
+    whole body (both halves of a half model); exactly one of them."""
+
+    displacement: Optional[float] = None
+    force: Optional[float] = None
+
+    def check(self, prefix):
+        given = [name for name in ("displacement", "force") if getattr(self, name) is not None]
+        _require(len(given) == 1, prefix + "displacement",
+                 f"{prefix.rstrip('.')} must give exactly one of displacement or force "
+                 f"(given: {given or 'none'})")
+        _require(_finite(getattr(self, given[0])) and getattr(self, given[0]) >= 0,
+                 prefix + given[0],
+                 f"{prefix}{given[0]} = {getattr(self, given[0])!r} must be a non-negative number")
+
+    @property
+    def kind(self):
+        return "force" if self.force is not None else "displacement"
 
 
 @dataclass(frozen=True)
 class Scene:
-    """Two bodies and a partial coating in frictionless contact (METHOD.md)."""
+    """The indenter, the base, its coating patches (any number, none overlapping) and
+    the load. ``symmetric``: a half model, x1 >= 0, with symmetry at x1 = 0.
+    ``contact_zone``: the x1 range where the indenter may touch the coatings or the
+    bare base (default: wherever its face is over the base); a run whose contact
+    reaches an end of it that is not the end of a face fails."""
 
-    length: float = 4.0            # l: length of Omega1 and Omega3
-    height: float = 8.0            # h: height of Omega1 and Omega3
-    coating_length: float = 2.0    # l2: the coating covers x1 in [0, l2]
-    h2: float = 0.125              # coating thickness
-    E1: float = 1.0                # Young's moduli of Omega1, the coating, Omega3
-    E2: float = 1.0
-    E3: float = 1.0
-    nu1: float = 0.3               # Poisson ratios
-    nu2: float = 0.3
-    nu3: float = 0.3
-    shear_factor: float = 5.0 / 6.0  # k' of the Timoshenko shell
-    chi: float = 1.0e-3            # initial gap d(x1) = chi x1^2
-    stamp: float = 2.778999e-3     # Delta: the stamp pushes Omega1's top down by Delta
+    indenter: Indenter = field(default_factory=Indenter)
+    base: Base = field(default_factory=Base)
+    coatings: tuple = (Coating(),)
+    load: Load = field(default_factory=lambda: Load(displacement=2.778999e-3))
+    symmetric: bool = True
+    contact_zone: Optional[tuple] = None
 
     def __post_init__(self):
-        for name in ("length", "height", "coating_length", "h2", "E1", "E2", "E3",
-                     "shear_factor", "chi"):
-            _positive(name, getattr(self, name))
-        for name in ("nu1", "nu2", "nu3"):
-            _poisson(name, getattr(self, name))
-        _require(_finite(self.stamp) and self.stamp >= 0,
-                 f"stamp = {self.stamp!r} must be a non-negative displacement")
-        _require(self.h2 < self.height,
-                 f"h2 = {self.h2!r} must be smaller than the body height h = {self.height!r}")
-        _require(self.coating_length <= self.length,
-                 f"coating_length = {self.coating_length!r} must not exceed the body "
-                 f"length l = {self.length!r}")
+        object.__setattr__(self, "coatings", tuple(self.coatings))
+        if self.contact_zone is not None:
+            object.__setattr__(self, "contact_zone", tuple(self.contact_zone))
+        _require(isinstance(self.symmetric, bool), "symmetric",
+                 f"symmetric = {self.symmetric!r} must be true or false")
+        self.indenter.check("indenter.")
+        self.base.check("base.")
+        self.load.check("load.")
+        for number, coating in enumerate(self.coatings, start=1):
+            coating.check(f"coating[{number}].")
+        self._check_layout()
 
-    def gap(self, x1):
-        """Initial normal gap between Omega1 and the coating, d(x1) = chi x1^2 / b^2."""
-        return self.chi * x1 ** 2
+    def _check_layout(self):
+        base, indenter = self.base, self.indenter
+        low = 0.0 if self.symmetric else -base.top
+        if self.symmetric:
+            _require(indenter.centre == 0, "indenter.centre",
+                     f"indenter.centre = {indenter.centre!r} must be 0 in a half model "
+                     "(symmetric = true); off-centre loads need symmetric = false")
+        for number, coating in enumerate(self.coatings, start=1):
+            key = f"coating[{number}]."
+            where = (f"the roller's upper half, |x1| < radius = {base.radius!r}"
+                     if base.shape == "roller" else f"the base's top face [{low:g}, {base.top:g}]")
+            limit = base.top
+            inside = (low <= coating.start and coating.end <= limit if base.shape == "block"
+                      else low <= coating.start and coating.end < limit and coating.start > -limit)
+            _require(inside, key + "start" if coating.start < low else key + "end",
+                     f"{key}start, end = {coating.start!r}, {coating.end!r} must lie on "
+                     f"{where}" + (" (a half model starts at the symmetry axis x1 = 0)"
+                                   if self.symmetric and coating.start < 0 else ""))
+            if base.shape == "block":
+                _require(coating.thickness < base.height, key + "thickness",
+                         f"{key}thickness = {coating.thickness!r} must be below base.height "
+                         f"= {base.height!r}")
+            else:
+                _require(coating.thickness < base.radius, key + "thickness",
+                         f"{key}thickness = {coating.thickness!r} must be below base.radius "
+                         f"= {base.radius!r}")
+        ordered = sorted(enumerate(self.coatings, start=1), key=lambda item: item[1].start)
+        for (n1, first), (n2, second) in zip(ordered, ordered[1:]):
+            _require(second.start >= first.end, f"coating[{n2}].start",
+                     f"coating[{n2}].start = {second.start!r} overlaps coating[{n1}] "
+                     f"[{first.start!r}, {first.end!r}]: patches must not overlap")
+        if self.contact_zone is not None:
+            zone = self.contact_zone
+            _require(len(zone) == 2 and all(_finite(z) for z in zone) and zone[0] < zone[1],
+                     "contact_zone", f"contact_zone = {list(zone)!r} must be [x1_start, x1_end] "
+                     "with x1_start < x1_end")
+            for number, coating in enumerate(self.coatings, start=1):
+                for end in zone:
+                    _require(not coating.start < end < coating.end, "contact_zone",
+                             f"contact_zone = {list(zone)!r} ends inside coating[{number}] "
+                             f"[{coating.start!r}, {coating.end!r}]: a zone must take a patch "
+                             "whole or not at all")
+        if self.load.force is not None:
+            _require(self.load.force > 0, "load.force",
+                     f"load.force = {self.load.force!r} must be positive: the indenter is "
+                     "pushed onto the base")
+
+    # ---- derived quantities -------------------------------------------------------
+    @property
+    def mirror_symmetric(self):
+        """A full model whose geometry and materials are symmetric about x1 = 0: its
+        meshes are made mirror-symmetric, so that it equals its half model."""
+        if self.symmetric or self.indenter.centre != 0:
+            return False
+        if self.contact_zone is not None and self.contact_zone[0] != -self.contact_zone[1]:
+            return False
+        mirrored = {replace(c, start=-c.end, end=-c.start) for c in self.coatings}
+        return mirrored == set(self.coatings)
 
     @property
-    def hertz_radius(self):
-        """Radius R of the parabola d = x1^2 / (2R) equivalent to the gap."""
-        return 1.0 / (2.0 * self.chi)
+    def half_force(self):
+        """The stamp's force on the modelled part (half of it in a half model)."""
+        if self.load.force is None:
+            return None
+        return 0.5 * self.load.force if self.symmetric else self.load.force
 
 
 @dataclass(frozen=True)
 class Settings:
-    """How the scene is solved: coating model, penalty, Robin loop, mesh."""
+    """How the scene is solved: penalty, Robin loop, mesh."""
 
-    model: str = "shell"           # coating model: "shell" (Timoshenko) or "elastic" (2D)
     theta: float = 1.0e-3          # penalty parameter of (16), in b/E
     method: str = "active-set"     # Robin loop: "active-set" (accelerated) or "paper"
     robin: Optional[float] = None  # Robin parameter gamma, E/b; None: 1/theta (paper), 2
@@ -97,26 +321,25 @@ class Settings:
     eps_u: float = 1.0e-6          # stop when the relative change of displacements < eps_u
     max_iterations: int = 3000
     mesh_level: int = 1            # 1: the paper's mesh; L: every mesh size divided by L
-    shell_elements: int = 32       # interface elements at mesh level 1
+    element_size: float = 0.0625   # length of an interface element at mesh level 1 (b)
     workers: str = "persistent"    # FreeFEM workers: persistent, or a fresh process per solve
 
     def __post_init__(self):
-        _require(self.model in MODELS, f"model = {self.model!r} must be one of {MODELS}")
-        _require(self.workers in WORKERS, f"workers = {self.workers!r} must be one of {WORKERS}")
-        _require(self.method in METHODS, f"method = {self.method!r} must be one of {METHODS}")
+        _choice("workers", self.workers, WORKERS)
+        _choice("method", self.method, METHODS)
         _positive("theta", self.theta)
         if self.robin is not None:
             _positive("robin", self.robin)
             # the Robin-Robin exchange loses the penalised laws at gamma theta = 2 (README)
-            _require(self.robin * self.theta < 1.5,
+            _require(self.robin * self.theta < 1.5, "robin",
                      f"robin = {self.robin!r} must be below 1.5/theta = {1.5 / self.theta:g}: "
                      "at gamma theta = 2 the Robin exchange no longer fixes the interface laws")
-        _require(_finite(self.rho) and 0 < self.rho <= 1,
+        _require(_finite(self.rho) and 0 < self.rho <= 1, "rho",
                  f"rho = {self.rho!r} must lie in (0, 1]")
         _positive("eps_u", self.eps_u)
         _positive_int("max_iterations", self.max_iterations)
         _positive_int("mesh_level", self.mesh_level)
-        _positive_int("shell_elements", self.shell_elements)
+        _positive("element_size", self.element_size)
 
     @property
     def robin_parameter(self):
@@ -128,5 +351,34 @@ class Settings:
         return 1.0 / self.theta if self.method == "paper" else min(DEFAULT_ROBIN, 1.0 / self.theta)
 
 
+def check_compatible(scene, settings):
+    """What a scene needs of the settings."""
+    _require(not (scene.load.force is not None and settings.method == "paper"), "method",
+             "method = 'paper' cannot carry load.force: the paper's loop leaves the indenter "
+             "unsupported while no point is in contact; use method = 'active-set'")
+
+
 def to_dict(obj):
-    return asdict(obj)
+    """Plain data for JSON: dataclasses as dicts, an infinite radius as None."""
+    data = asdict(obj)
+    if isinstance(obj, Scene):
+        data["coatings"] = [asdict(c) for c in obj.coatings]
+        if math.isinf(obj.indenter.radius):
+            data["indenter"]["radius"] = None
+        data["contact_zone"] = list(obj.contact_zone) if obj.contact_zone else None
+    return data
+
+
+def scene_from_dict(data):
+    """The inverse of ``to_dict`` for a scene (a summary.json's "scene")."""
+    indenter = dict(data["indenter"])
+    if indenter.get("radius") is None:
+        indenter["radius"] = math.inf
+    return Scene(indenter=Indenter(**indenter), base=Base(**data["base"]),
+                 coatings=tuple(Coating(**c) for c in data["coatings"]),
+                 load=Load(**data["load"]), symmetric=data["symmetric"],
+                 contact_zone=data.get("contact_zone"))
+
+
+def settings_fields():
+    return [f.name for f in fields(Settings)]

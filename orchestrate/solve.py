@@ -1,20 +1,25 @@
 """One run: validate, mesh, start the workers, iterate, write the results.
 
 Results of a run in its output folder:
-    contact.csv    x1, sigma_n on S12 (sigma_12n / E, compression negative)
-    interface.csv  x1, sigma_n on S23 (sigma_23n / E), sigma_t
-    traces.csv     x1 and the interface displacements: u1n and w on S12 (outward normals),
-                   (u1, u2) of the coating's bottom and of Omega3's top on S23
+    contact.csv    every contact interface's points: interface, x1, x2, s (arc length
+                   along the base's face), sigma_n (normal stress / E, compression negative)
+    interface.csv  every bond's points: interface, x1, x2, s, sigma_n, sigma_t (the
+                   traction on the base, in the face's normal and tangential components)
+    traces.csv     interface, x1, x2, s and each side's displacement trace: a_n, b_n (a
+                   contact: along each side's outward normal), a_t, a_n, b_t, b_n (a bond:
+                   the coating's and the base's, in the face's components)
     history.csv    one row per Robin iteration
-    summary.json   scene, settings, outcome, forces, timings (written last)
-    omega1.vtu, omega3.vtu, coating.vtu   displacement (and stress) fields for ParaView
-    omega1.csv, omega3.csv  x1, x2, u1, u2, sigma_eq at the P2 nodes of each body
-    coating.csv    the same in the 2D coating (model elastic); coating_fields.csv holds
-                   the shell's v, w, gamma, T11, T13, M11 (model shell)
+    summary.json   scene, settings, outcome, forces, peaks, contact zones (written last)
+    NAME.vtu, NAME.csv, NAME_reactions.txt   each body's fields (indenter, base, 2D coating
+                   patches coatingI): displacement and stress, x1, x2, u1, u2, sigma_eq at
+                   the P2 nodes, consistent reactions on its supports
+    coatingI_fields.csv, coatingI.vtu   a shell patch's xi, x1, x2, v, w, gamma, T11, T13,
+                   M11 along its mid-line
 Numbers that did not converge are never written as results: a run that diverges or
 stagnates writes only history.csv and a summary.json that says why.
 """
 
+import math
 import os
 import tempfile
 import time
@@ -22,11 +27,12 @@ import time
 import numpy as np
 
 from . import freefem
-from .contact import contact_half_width
+from .contact import contact_half_width, contact_zones
+from .discretization import discretize
 from .labels import LABELS
-from .outputs import read_reactions, write_csv, write_history, write_json, write_shell_vtu
+from .outputs import read_reactions, write_csv, write_history, write_json, write_shell_fields
 from .robin import run_robin_loop
-from .scene import to_dict
+from .scene import check_compatible, to_dict
 from .state import StateLayout
 from .subdomains import start_subdomains, write_inputs
 
@@ -42,18 +48,25 @@ class RunFailed(RuntimeError):
 def solve(scene, settings, out_dir, progress=None):
     """Solve the scene; write results into ``out_dir``; return the summary dict.
 
-    Raises RunFailed (after writing the report) if the loop does not converge."""
+    Raises ParameterError before any work for a scene the settings cannot solve, and
+    RunFailed (after writing the report) if the loop does not converge."""
     freefem.executable()             # a missing FreeFEM is reported before any work
+    check_compatible(scene, settings)
+    problem = discretize(scene, settings)
     out_dir = os.path.abspath(out_dir)
     os.makedirs(out_dir, exist_ok=True)
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="robin-") as workdir:
-        files, contact_points, bond_points = write_inputs(scene, settings, workdir)
-        layout = StateLayout(contact_points.size)
-        with start_subdomains(scene, settings, files, workdir, out_dir) as subdomains:
+        files = write_inputs(problem, workdir)
+        with start_subdomains(problem, settings, files, workdir, out_dir) as subdomains:
             setup_seconds = time.perf_counter() - start
-            loop = run_robin_loop(subdomains.solve, layout, contact_points, scene, settings,
-                                  progress)
+            loop = run_robin_loop(subdomains.solve, problem, settings, progress)
+            if loop.converged:
+                reached = zone_end_reached(problem, loop.psi)
+                if reached is not None:
+                    loop.converged, loop.status = False, "contact_zone"
+                    loop.reason = (f"the contact reaches the end of contact_zone at x1 = "
+                                   f"{reached:g}: contact beyond it was assumed away; widen it")
             if loop.converged:
                 subdomains.write_outputs()   # the workers hold the fields of the last solve
             dofs = subdomains.dofs
@@ -78,50 +91,124 @@ def solve(scene, settings, out_dir, progress=None):
         write_json(os.path.join(out_dir, "summary.json"), summary)
         raise RunFailed(summary)
 
-    summary.update(_write_results(scene, settings, layout, loop, contact_points,
-                                  bond_points, out_dir))
+    summary.update(_write_results(problem, loop, out_dir))
     write_json(os.path.join(out_dir, "summary.json"), summary)
     return summary
 
 
+def zone_end_reached(problem, psi):
+    """x1 of an end of the user's contact_zone that the contact set reaches, if that end
+    is not also the end of a face (there contact stops anyway), else None."""
+    scene = problem.scene
+    if scene.contact_zone is None or not len(psi) or not problem.contacts:
+        return None
+    contacts = problem.contacts
+    ends = [(contacts[0].position[0, 0], psi[0]), (contacts[-1].position[-1, 0], psi[-1])]
+    indenter, base = scene.indenter, scene.base
+    low = 0.0 if scene.symmetric else max(indenter.centre - indenter.width, -base.top)
+    high = min(indenter.width if scene.symmetric else indenter.centre + indenter.width, base.top)
+    for (x1, active), face_end in zip(ends, (low, high)):
+        if active > 0 and abs(x1 - face_end) > 1e-9 * (1.0 + abs(face_end)):
+            return float(x1)
+    return None
+
+
 def interface_stresses(layout, state, psi):
-    """sigma_12n on S12 and the traction (sigma_t, sigma_n) on S23 (on Omega3's top).
+    """{interface index: stress} of the state: on a contact sigma_n (points,), on a bond
+    the traction on the base (sigma_t, sigma_n) (2, points).
 
     Each side's traction is what its own Robin condition imposed in the last solve; the
     two sides agree at convergence, and their mean is written. Off the contact set Psi
     the law says zero; the loop's residual traction there (the active-set loop holds
     inactive points with a Robin term) is of the order of eps_u and is not a stress."""
-    sigma_12n = 0.5 * (layout.get(state, "t_upper_n") + layout.get(state, "t_coating_n"))
-    sigma_12n = np.where(psi > 0, sigma_12n, 0.0)
-    traction_23 = 0.5 * (layout.get(state, "t_lower_bond") - layout.get(state, "t_coating_bond"))
-    return sigma_12n, traction_23
+    stresses = {}
+    psi_of = dict((i, psi[where]) for i, where in layout.contact_slices())
+    for i, interface in enumerate(layout.interfaces):
+        t_a, t_b = layout.get(state, "t", i, 0), layout.get(state, "t", i, 1)
+        if interface.kind == "contact":
+            stresses[i] = np.where(psi_of[i] > 0, 0.5 * (t_a + t_b), 0.0)
+        else:
+            stresses[i] = 0.5 * (t_b - t_a)
+    return stresses
 
 
-def _write_results(scene, settings, layout, loop, contact_points, bond_points, out_dir):
+def _write_results(problem, loop, out_dir):
     """Interface stresses and forces of the converged state; return summary entries."""
+    layout = StateLayout(problem.interfaces)
     state = loop.state
-    sigma_12n, traction_23 = interface_stresses(layout, state, loop.psi)
-    write_csv(os.path.join(out_dir, "contact.csv"), {"x1": contact_points.x, "sigma_n": sigma_12n})
-    write_csv(os.path.join(out_dir, "traces.csv"), {
-        "x1": contact_points.x,
-        "upper_n": layout.get(state, "upper_n"), "coating_n": layout.get(state, "coating_n"),
-        "coating_u1": layout.get(state, "coating_bond")[0],
-        "coating_u2": layout.get(state, "coating_bond")[1],
-        "lower_u1": layout.get(state, "lower_bond")[0],
-        "lower_u2": layout.get(state, "lower_bond")[1]})
+    stresses = interface_stresses(layout, state, loop.psi)
+    contact_rows, bond_rows, trace_rows = [], [], []
+    for i, interface in enumerate(problem.interfaces):
+        where = {"interface": [interface.name] * interface.size,
+                 "x1": interface.position[:, 0], "x2": interface.position[:, 1], "s": interface.s}
+        u_a, u_b = layout.get(state, "u", i, 0), layout.get(state, "u", i, 1)
+        if interface.kind == "contact":
+            contact_rows.append({**where, "sigma_n": stresses[i]})
+            trace_rows.append({**where, "a_t": np.full(interface.size, np.nan), "a_n": u_a,
+                               "b_t": np.full(interface.size, np.nan), "b_n": u_b})
+        else:
+            bond_rows.append({**where, "sigma_n": stresses[i][1], "sigma_t": stresses[i][0]})
+            trace_rows.append({**where, "a_t": u_a[0], "a_n": u_a[1], "b_t": u_b[0], "b_n": u_b[1]})
+    where = ("interface", "x1", "x2", "s")
+    write_csv(os.path.join(out_dir, "contact.csv"), _stack(contact_rows, where + ("sigma_n",)))
     write_csv(os.path.join(out_dir, "interface.csv"),
-              {"x1": bond_points.x, "sigma_n": traction_23[1], "sigma_t": traction_23[0]})
-    if settings.model == "shell":
-        write_shell_vtu(os.path.join(out_dir, "coating_fields.csv"),
-                        scene.height + scene.h2 / 2, os.path.join(out_dir, "coating.vtu"))
-    upper = read_reactions(os.path.join(out_dir, "omega1_reactions.txt"))
-    lower = read_reactions(os.path.join(out_dir, "omega3_reactions.txt"))
+              _stack(bond_rows, where + ("sigma_n", "sigma_t")))
+    write_csv(os.path.join(out_dir, "traces.csv"),
+              _stack(trace_rows, where + ("a_t", "a_n", "b_t", "b_n")))
+    for name, subdomain in problem.subdomains.items():
+        if subdomain.kind == "shell":
+            write_shell_fields(os.path.join(out_dir, f"{name}_fields.csv"), subdomain.plan,
+                               os.path.join(out_dir, f"{name}.vtu"))
+
+    indenter = read_reactions(os.path.join(out_dir, "indenter_reactions.txt"))
+    base = read_reactions(os.path.join(out_dir, "base_reactions.txt"))
+    per_interface, contact_force, interface_force = {}, 0.0, 0.0
+    for i, interface in enumerate(problem.interfaces):
+        if interface.kind == "contact":
+            force = -interface.integrate(stresses[i] * interface.normal[:, 1])
+            contact_force += force
+            peak = float(np.min(stresses[i]))
+        else:
+            sigma_t, sigma_n = stresses[i]
+            force = -interface.integrate(sigma_n * interface.normal[:, 1]
+                                         + sigma_t * interface.tangent[:, 1])
+            interface_force += force
+            peak = float(np.min(sigma_n))
+        per_interface[interface.name] = {"force": force, "peak_normal_stress": peak}
+    contact = [stresses[i] for i in layout.contact_indices]
+    x_contact = np.concatenate([problem.interfaces[i].position[:, 0] for i in layout.contact_indices])
+    sigma_contact = np.concatenate(contact)
+    bonds = [stresses[i][1] for i, f in enumerate(problem.interfaces) if f.kind == "bond"]
+    scene = problem.scene
+    zones = contact_zones(x_contact, sigma_contact)
     return {
-        "contact_force": -contact_points.integrate(sigma_12n),
-        "interface_force": -bond_points.integrate(traction_23[1]),
-        "stamp_reaction": -upper[LABELS["Stamp"]][1],
-        "base_reaction": lower[LABELS["Clamped"]][1],
-        "peak_contact_stress": float(np.min(sigma_12n)),
-        "peak_interface_stress": float(np.min(traction_23[1])),
-        "contact_half_width": contact_half_width(contact_points.x, sigma_12n),
+        "contact_force": contact_force,
+        "interface_force": interface_force,
+        "stamp_reaction": -indenter[LABELS["Stamp"]][1],
+        "base_reaction": base[LABELS["Clamped"]][1],
+        "peak_contact_stress": float(np.min(sigma_contact)),
+        "peak_interface_stress": float(np.min(np.concatenate(bonds))) if bonds else None,
+        "contact_half_width": _half_width(scene, x_contact, sigma_contact, zones),
+        "contact_zones": [list(zone) for zone in zones],
+        "descent": loop.descent,
+        "total_force": (2.0 if scene.symmetric else 1.0) * contact_force,
+        "interfaces": per_interface,
+        "normal_mismatch_deg": math.degrees(problem.normal_mismatch),
     }
+
+
+def _half_width(scene, x, sigma, zones):
+    """A half model: the end of the zone on the axis; a full model: half the length of
+    the zone under the indenter's lowest point."""
+    if scene.symmetric:
+        return contact_half_width(x, sigma)
+    for start, end in zones:
+        if start <= scene.indenter.centre <= end:
+            return 0.5 * (end - start)
+    return 0.0
+
+
+def _stack(rows, columns):
+    """One table of the given columns from tables that have them."""
+    return {name: np.concatenate([np.asarray(r[name]) for r in rows]) if rows else []
+            for name in columns}

@@ -1,74 +1,110 @@
 """The interface state the Robin loop iterates on.
 
-Every quantity lives at the shared interface points (orchestrate/interface.py), so one
-flat vector holds them all and relaxation or acceleration acts on it as a whole. For
-each side of each interface it holds the displacement trace and the traction that side
-felt in its last solve:
+Every quantity lives at the points of its interface (orchestrate/discretization.py),
+so one flat vector holds them all and relaxation or acceleration acts on it as a
+whole. For each side of each interface it holds the trace that side had in its last
+solve and the traction it felt there:
 
-    upper_n       Omega1 on S12: displacement along its outward normal (down), u1n
-    coating_n     coating on S21: displacement along its outward normal (up), w
-    coating_bond  coating on S23: displacement (u1, u2) of its bottom
-    lower_bond    Omega3 on S32: displacement (u1, u2) of its top
-and the same four as tractions (sigma.n: normal component on S12, vector on S23),
-prefixed ``t_``. Non-penetration on S12 reads u1n + w <= d.
+    ("u", i, side)   trace of interface i's side 0 (A) or 1 (B): a contact's
+                     displacement along the side's outward normal (towards the other
+                     body), or a bond's tangential and normal displacement
+    ("t", i, side)   the traction that side felt (normal component on a contact, both
+                     components on a bond)
+
+Traces come first, interface by interface (side A, side B), then tractions in the same
+order. Non-penetration on a contact reads u_A + u_B <= d.
 """
 
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
-# name: number of components
-BLOCKS = {
-    "upper_n": 1, "coating_n": 1, "coating_bond": 2, "lower_bond": 2,
-    "t_upper_n": 1, "t_coating_n": 1, "t_coating_bond": 2, "t_lower_bond": 2,
-}
-DISPLACEMENTS = ("upper_n", "coating_n", "coating_bond", "lower_bond")
 
-
-@dataclass(frozen=True)
 class StateLayout:
-    points: int   # interface points, the same on S12 and S23
-
-    @cached_property
-    def _blocks(self):
-        """(slice of every block, total size), computed once."""
-        slices, start = {}, 0
-        for name, components in BLOCKS.items():
-            slices[name] = slice(start, start + components * self.points)
-            start += components * self.points
-        return slices, start
-
-    @property
-    def size(self):
-        return self._blocks[1]
+    def __init__(self, interfaces):
+        self.interfaces = tuple(interfaces)
+        self.slices, start = {}, 0
+        for kind in ("u", "t"):
+            for i, interface in enumerate(self.interfaces):
+                for side in (0, 1):
+                    size = interface.components * interface.size
+                    self.slices[kind, i, side] = slice(start, start + size)
+                    start += size
+        self.size = start
+        self.contact_indices = [i for i, f in enumerate(self.interfaces) if f.kind == "contact"]
 
     def zeros(self):
         return np.zeros(self.size)
 
-    def get(self, x, name):
-        """View of one block: shape (points,) or (2, points)."""
-        block = x[self._blocks[0][name]]
-        return block if BLOCKS[name] == 1 else block.reshape(BLOCKS[name], self.points)
+    def get(self, x, kind, i, side):
+        """View of one block: shape (points,) on a contact, (2, points) on a bond."""
+        interface = self.interfaces[i]
+        block = x[self.slices[kind, i, side]]
+        return block if interface.components == 1 else block.reshape(2, interface.size)
 
-    def pack(self, **blocks):
-        """A state from every block by name."""
+    def pack(self, blocks):
+        """A state from ``{(kind, i, side): values}``."""
         x = self.zeros()
-        slices = self._blocks[0]
-        for name in BLOCKS:
-            x[slices[name]] = np.ravel(blocks[name])
+        for key, where in self.slices.items():
+            x[where] = np.ravel(blocks[key])
         return x
 
+    # ---- the contact interfaces, concatenated ------------------------------------------
+    def contact(self, x, kind, side):
+        """One block of every contact interface, end to end (the contact set's points)."""
+        if not self.contact_indices:
+            return np.zeros(0)
+        return np.concatenate([self.get(x, kind, i, side) for i in self.contact_indices])
+
+    @cached_property
+    def gap(self):
+        return self._concatenate("gap")
+
+    @cached_property
+    def contact_weight(self):
+        return self._concatenate("weight")
+
+    @cached_property
+    def contact_normal_x2(self):
+        """The x2 component of the contact points' normals: a normal force's share of
+        the vertical resultant."""
+        if not self.contact_indices:
+            return np.zeros(0)
+        return np.concatenate([self.interfaces[i].normal[:, 1] for i in self.contact_indices])
+
+    def _concatenate(self, name):
+        if not self.contact_indices:
+            return np.zeros(0)
+        return np.concatenate([getattr(self.interfaces[i], name) for i in self.contact_indices])
+
+    def contact_slices(self):
+        """Where each contact interface's points sit in the concatenated contact arrays."""
+        slices, start = [], 0
+        for i in self.contact_indices:
+            slices.append((i, slice(start, start + self.interfaces[i].size)))
+            start += self.interfaces[i].size
+        return slices
+
+    # ---- norms -----------------------------------------------------------------------
+    @cached_property
+    def entry_weight(self):
+        """The quadrature weight of every entry's point."""
+        weight = self.zeros()
+        for (kind, i, side), where in self.slices.items():
+            interface = self.interfaces[i]
+            weight[where] = np.tile(interface.weight, interface.components)
+        return weight
+
+    @cached_property
     def displacement_mask(self):
-        """True on the displacement entries (the paper's stopping test looks at these)."""
+        """True on the displacement entries (the stopping tests look at these)."""
         mask = np.zeros(self.size, dtype=bool)
-        slices = self._blocks[0]
-        for name in DISPLACEMENTS:
-            mask[slices[name]] = True
+        for (kind, i, side), where in self.slices.items():
+            if kind == "u":
+                mask[where] = True
         return mask
 
-    def displacement_norm(self, x, weight):
-        """Discrete L2 norm of the displacement traces over S12 and S23 (omega-weighted)."""
-        mask = self.displacement_mask()
-        weights = np.tile(weight, self.size // self.points)
-        return float(np.sqrt(np.dot(weights[mask], np.square(x[mask]))))
+    def displacement_norm(self, x):
+        """Discrete L2 norm of the displacement traces over all interfaces."""
+        mask = self.displacement_mask
+        return float(np.sqrt(np.dot(self.entry_weight[mask], np.square(x[mask]))))

@@ -1,88 +1,90 @@
-"""The three subdomain workers of a run and the files they read.
+"""The subdomain workers of a run and the files they read.
 
-Omega1 and Omega3 run freefem/body.edp; the coating runs freefem/shell.edp (shell
-model) or freefem/body.edp on its own mesh (2D model). Within a Robin iteration the
-three solves are independent: every request is written before any reply is read, so
-the workers compute at the same time.
+Every body (the indenter, the base, a 2D coating patch) runs freefem/body.edp and every
+shell patch freefem/shell.edp, each on its own mesh or mid-line and sides file
+(orchestrate/exchange.py). Within a Robin iteration the solves are independent: every
+request is written before any reply is read, so the workers compute at the same time.
 """
 
-from dataclasses import dataclass
 import os
 import time
 
-import numpy as np
-
-from .interface import nodal_quadrature, write_quadrature
-from .mesh import body_mesh, coating_mesh, interface_elements, interface_nodes, write_medit
+from .exchange import parse_reply, reply_count, request_arrays, write_sides
+from .mesh import body_mesh, coating_mesh, write_medit
+from .discretization import BodyPlan
 from .worker import CMD_OUTPUT, CMD_SOLVE, Worker
 
 
-@dataclass(frozen=True)
-class RunFiles:
-    """Inputs written once per run into a private working folder."""
-    upper_mesh: str
-    lower_mesh: str
-    coating_mesh: str     # 2D coating model only
-    shell_nodes: str
-    contact_points: str
-    bond_points: str
+def write_inputs(problem, workdir):
+    """Meshes, shell nodes and sides files of every subdomain, in ``workdir``; returns
+    {name: {"mesh" or "nodes": path, "sides": path}}."""
+    files = {}
+    for name, subdomain in problem.subdomains.items():
+        files[name] = {"sides": os.path.join(workdir, f"{name}.sides")}
+        write_sides(files[name]["sides"], [(problem.interfaces[i], problem.interfaces[i].sides[k])
+                                           for i, k in problem.sides_of(name)])
+        plan = subdomain.plan
+        if subdomain.kind == "body":
+            files[name]["mesh"] = os.path.join(workdir, f"{name}.mesh")
+            mesh = body_mesh(plan) if isinstance(plan, BodyPlan) else coating_mesh(plan)
+            write_medit(mesh, files[name]["mesh"])
+        else:
+            files[name]["nodes"] = os.path.join(workdir, f"{name}_nodes.txt")
+            with open(files[name]["nodes"], "w") as out:
+                out.write(f"{len(plan.nodes)}\n" + "\n".join(map(repr, plan.nodes.tolist())) + "\n")
+    return files
 
 
-def write_inputs(scene, settings, workdir):
-    """Meshes, shell nodes and the interface quadrature; returns paths and quadratures."""
-    nodes = interface_nodes(scene.coating_length, interface_elements(scene, settings))
-    files = RunFiles(*(os.path.join(workdir, name) for name in (
-        "omega1.mesh", "omega3.mesh", "coating.mesh", "shell_nodes.txt", "s12.txt", "s23.txt")))
-    write_medit(body_mesh(scene, settings, "upper"), files.upper_mesh)
-    write_medit(body_mesh(scene, settings, "lower"), files.lower_mesh)
-    if settings.model == "elastic":
-        write_medit(coating_mesh(scene, settings), files.coating_mesh)
-    with open(files.shell_nodes, "w") as out:
-        out.write(f"{len(nodes)}\n" + "\n".join(map(repr, nodes.tolist())) + "\n")
-    contact = nodal_quadrature(nodes, scene.gap)
-    bond = nodal_quadrature(nodes)
-    write_quadrature(contact, files.contact_points)
-    write_quadrature(bond, files.bond_points)
-    return files, contact, bond
+def shell_numbers(subdomain):
+    """A shell's numbers as its FreeFEM scripts take them: E, nu, h2, k', curvature,
+    whether its start is on the symmetry axis."""
+    plan = subdomain.plan
+    return [subdomain.E, subdomain.nu, plan.thickness, plan.shear_factor, plan.curvature,
+            int(plan.symmetric_start)]
+
+
+def worker_arguments(subdomain, files):
+    """The command-line arguments of a subdomain's worker script (body.edp, shell.edp)."""
+    if subdomain.kind == "body":
+        return ["-mesh", files["mesh"], "-E", subdomain.E, "-nu", subdomain.nu,
+                "-sides", files["sides"]]
+    E, nu, h2, kshear, curvature, symmetric = shell_numbers(subdomain)
+    return ["-nodes", files["nodes"], "-E", E, "-nu", nu, "-h2", h2, "-kshear", kshear,
+            "-curvature", curvature, "-symmetric", symmetric, "-sides", files["sides"]]
+
+
+def load_arguments(problem):
+    """The stamp's load for the indenter's worker: its descent, or its force."""
+    scene = problem.scene
+    if scene.load.force is not None:
+        return ["-force", scene.half_force]
+    return ["-descent", scene.load.displacement]
 
 
 class Subdomains:
-    """Omega1, the coating and Omega3 as persistent FreeFEM workers."""
+    """Every subdomain as a persistent FreeFEM worker."""
 
-    def __init__(self, scene, settings, files, workdir, output_dir):
+    def __init__(self, problem, files, workdir, output_dir):
+        self.problem = problem
         self.workdir = workdir
         self.workers = {}
-        self.specs = {
-            "upper": ("omega1", "body.edp", [
-                "-mesh", files.upper_mesh, "-E", scene.E1, "-nu", scene.nu1,
-                "-stamp", scene.stamp, "-contact", files.contact_points,
-                "-output", os.path.join(output_dir, "omega1")]),
-            "coating": self._coating_spec(scene, settings, files, output_dir),
-            "lower": ("omega3", "body.edp", [
-                "-mesh", files.lower_mesh, "-E", scene.E3, "-nu", scene.nu3,
-                "-bond", files.bond_points, "-output", os.path.join(output_dir, "omega3")]),
-        }
+        self.sides = {name: problem.sides_of(name) for name in problem.subdomains}
+        self.specs = {}
+        for name, subdomain in problem.subdomains.items():
+            script = "body.edp" if subdomain.kind == "body" else "shell.edp"
+            arguments = worker_arguments(subdomain, files[name]) + [
+                "-output", os.path.join(output_dir, name)]
+            if subdomain.stamp:
+                arguments += load_arguments(problem)
+            self.specs[name] = (script, arguments)
         self.dofs = self._start()
-
-    @staticmethod
-    def _coating_spec(scene, settings, files, output_dir):
-        output = os.path.join(output_dir, "coating")
-        if settings.model == "elastic":     # (25): the coating as a P2 body, Robin on both faces
-            return ("coating", "body.edp", [
-                "-mesh", files.coating_mesh, "-E", scene.E2, "-nu", scene.nu2,
-                "-contact", files.contact_points, "-bond", files.bond_points,
-                "-output", output])
-        return ("coating", "shell.edp", [
-            "-nodes", files.shell_nodes, "-E", scene.E2, "-nu", scene.nu2, "-h2", scene.h2,
-            "-kshear", scene.shear_factor, "-contact", files.contact_points,
-            "-bond", files.bond_points, "-output", output])
 
     def _start(self):
         """Start every worker (they assemble and factorise at once); return their dofs."""
         try:
-            for key, (name, script, arguments) in self.specs.items():
-                self.workers[key] = Worker(name, script, arguments, self.workdir)
-            return {key: worker.wait_ready() for key, worker in self.workers.items()}
+            for name, (script, arguments) in self.specs.items():
+                self.workers[name] = Worker(name, script, arguments, self.workdir)
+            return {name: worker.wait_ready() for name, worker in self.workers.items()}
         except BaseException:
             self.close()
             raise
@@ -90,26 +92,27 @@ class Subdomains:
     def solve(self, data):
         """One independent solve per subdomain.
 
-        ``data`` maps "upper", "coating", "lower" to the arrays of the request: Robin
-        coefficient and data per interface. Returns the traces
-        ``(upper_n, coating_n, coating_bond, lower_bond)`` and the timings: each worker's
-        CPU seconds for the request and ("back_" + name) for its back-substitution alone,
-        and "wait", the driver's wall time from the first request sent to the last reply."""
+        ``data``: {(interface index, side): (alpha, g)} (robin.robin_data). Returns the
+        traces {(interface index, side): trace}, the timings (each worker's CPU seconds
+        for the request, "back_" + name for its back-substitution alone, and "wait", the
+        driver's wall time from the first request sent to the last reply) and the
+        stamp's descent."""
         start = time.perf_counter()
         for name, worker in self.workers.items():
-            worker.send(CMD_SOLVE, data[name])
-        upper_n, upper_seconds = self.workers["upper"].receive_arrays(2)
-        coating_n, coating_1, coating_2, coating_seconds = self.workers["coating"].receive_arrays(4)
-        lower_1, lower_2, lower_seconds = self.workers["lower"].receive_arrays(3)
-        seconds = {"upper": upper_seconds[0], "coating": coating_seconds[0],
-                   "lower": lower_seconds[0], "wait": time.perf_counter() - start,
-                   "back_upper": upper_seconds[1], "back_coating": coating_seconds[1],
-                   "back_lower": lower_seconds[1]}
-        return (upper_n, coating_n, np.array([coating_1, coating_2]),
-                np.array([lower_1, lower_2])), seconds
+            worker.send(CMD_SOLVE, request_arrays(self.sides[name], data))
+        traces, seconds, descent = {}, {}, None
+        for name, worker in self.workers.items():
+            arrays = worker.receive_arrays(reply_count(self.problem, self.sides[name]))
+            received, info = parse_reply(self.problem, self.sides[name], arrays)
+            traces.update(received)
+            seconds[name], seconds[f"back_{name}"] = float(info[0]), float(info[1])
+            if self.problem.subdomains[name].stamp:
+                descent = float(info[2])
+        seconds["wait"] = time.perf_counter() - start
+        return traces, seconds, descent
 
     def write_outputs(self):
-        """Ask every worker to write its fields (VTU, CSV) and reactions."""
+        """Ask every worker to write its fields (CSV, VTU) and reactions."""
         for worker in self.workers.values():
             worker.send(CMD_OUTPUT)
         for worker in self.workers.values():
@@ -141,12 +144,12 @@ class FreshProcessSubdomains(Subdomains):
         start = time.perf_counter()
         self._start()
         try:
-            traces, seconds = super().solve(data)
+            traces, seconds, descent = super().solve(data)
         finally:
             self.close()
         self.last_data = data
         seconds["wait"] = time.perf_counter() - start
-        return traces, seconds
+        return traces, seconds, descent
 
     def write_outputs(self):
         self._start()
@@ -157,7 +160,7 @@ class FreshProcessSubdomains(Subdomains):
             self.close()
 
 
-def start_subdomains(scene, settings, files, workdir, output_dir):
+def start_subdomains(problem, settings, files, workdir, output_dir):
     """The workers of a run: persistent (default) or a fresh process per solve."""
     kind = FreshProcessSubdomains if settings.workers == "fresh" else Subdomains
-    return kind(scene, settings, files, workdir, output_dir)
+    return kind(problem, files, workdir, output_dir)

@@ -1,6 +1,9 @@
 """Parameter sweeps: ``python -m orchestrate sweep SWEEP.toml``.
 
-A sweep file names scene and settings values (the fields of orchestrate/scene.py):
+A sweep file names scene and settings values: any solver setting (orchestrate/scene.py's
+Settings), the paper's parameters (h2, E2, model, ...; scene_file.SHORTHANDS), any scene
+key in dotted form ("indenter.radius", "coating[2].E", "load.force"), and ``scene``, a
+scene file (relative to the sweep file; default: the paper's scene):
 
     name = "example"                 # results/<name>/ (default: the file's stem)
     [fixed]                          # values shared by every run
@@ -45,11 +48,11 @@ import pandas as pd
 
 from .outputs import write_json
 from .paths import RESULTS_DIR
-from .scene import ParameterError, Scene, Settings
+from .scene import ParameterError, Settings, scene_from_dict, to_dict
+from .scene_file import is_scene_key, scene_and_settings, shorthand_values
 
-SCENE_FIELDS = {f.name for f in fields(Scene)}
 SETTINGS_FIELDS = {f.name for f in fields(Settings)}
-FAILED = ("diverged", "stagnated", "max_iterations", "error", "invalid")
+FAILED = ("diverged", "stagnated", "max_iterations", "contact_zone", "error", "invalid")
 
 
 # ---- the sweep file ---------------------------------------------------------------------
@@ -66,7 +69,8 @@ def load_sweep(path):
     grids = ([data["grid"]] if "grid" in data else []) + data.get("grids", [])
     singles = data.get("runs", [])
     for table in (fixed, *grids, *singles):
-        unknown = set(table) - SCENE_FIELDS - SETTINGS_FIELDS
+        unknown = {key for key in table if key not in SETTINGS_FIELDS and key != "scene"
+                   and not is_scene_key(key)}
         if unknown:
             raise ParameterError(f"unknown scene or settings parameter(s) in {path.name}: "
                                  f"{sorted(unknown)}")
@@ -84,6 +88,14 @@ def load_sweep(path):
     return data.get("name", path.stem), points
 
 
+def point_scene(values, scene_dir="."):
+    """The scene and settings of a point; its scene file is relative to ``scene_dir``."""
+    overrides = {k: v for k, v in values.items() if is_scene_key(k)}
+    settings = {k: v for k, v in values.items() if k in SETTINGS_FIELDS}
+    scene_file = Path(scene_dir) / values["scene"] if "scene" in values else None
+    return scene_and_settings(scene_file, overrides, settings)
+
+
 def point_id(values):
     """A short stable name for a point: the hash of its values."""
     text = json.dumps({k: values[k] for k in sorted(values)}, sort_keys=True)
@@ -92,7 +104,7 @@ def point_id(values):
 
 # ---- one run, in a worker process -----------------------------------------------------
 
-def run_point(values, sweep_dir):
+def run_point(values, sweep_dir, scene_dir="."):
     """Solve one point into sweep_dir/runs/<id>/ unless it is there; return its id.
 
     Runs in an engine's worker process; never raises for a failed run: the reason goes
@@ -108,8 +120,7 @@ def run_point(values, sweep_dir):
     scratch.mkdir(parents=True)
     report = {"point": values}
     try:
-        scene = Scene(**{k: v for k, v in values.items() if k in SCENE_FIELDS})
-        settings = Settings(**{k: v for k, v in values.items() if k in SETTINGS_FIELDS})
+        scene, settings = point_scene(values, scene_dir)
         solve(scene, settings, scratch / "run")
     except ParameterError as error:
         report.update(status="invalid", reason=str(error), converged=False)
@@ -152,19 +163,39 @@ def gather(sweep_dir, points):
         if not path.exists():
             continue
         summary = json.loads(path.read_text())
-        row = {"id": identifier}
-        for cls, key in ((Scene, "scene"), (Settings, "settings")):
-            # an invalid point has no scene or settings: its values over the defaults
-            given = summary.get(key) or {f.name: values.get(f.name, f.default)
-                                         for f in fields(cls)}
-            row.update({f.name: given[f.name] for f in fields(cls)})
+        row = {"id": identifier, **values}
+        if summary.get("scene"):
+            scene = scene_from_dict(summary["scene"])
+            row.update(shorthand_values(scene))
+            row.update(_flatten(to_dict(scene)))
+        # an invalid point has no settings: its values over the defaults
+        settings = summary.get("settings") or {f.name: values.get(f.name, f.default)
+                                               for f in fields(Settings)}
+        row.update({f.name: settings[f.name] for f in fields(Settings)})
         for key in ("status", "reason", "converged", "iterations", "final_relative_change",
-                    "active_set_changes", "contact_force", "interface_force",
-                    "peak_contact_stress", "peak_interface_stress", "contact_half_width",
-                    "wall_time_s", "setup_time_s", "time_per_iteration_s"):
+                    "active_set_changes", "contact_force", "total_force", "descent",
+                    "interface_force", "peak_contact_stress", "peak_interface_stress",
+                    "contact_half_width", "wall_time_s", "setup_time_s",
+                    "time_per_iteration_s"):
             row[key] = summary.get(key)
         rows.append(row)
     return pd.DataFrame(rows).sort_values("id").reset_index(drop=True) if rows else pd.DataFrame()
+
+
+def _flatten(data, prefix=""):
+    """A scene's dict as dotted keys: indenter.radius, coating[1].E, ..."""
+    flat = {}
+    for key, value in data.items():
+        if isinstance(value, dict):
+            flat.update(_flatten(value, f"{prefix}{key}."))
+        elif key == "coatings":
+            for number, coating in enumerate(value, start=1):
+                flat.update(_flatten(coating, f"{prefix}coating[{number}]."))
+        elif isinstance(value, list):
+            flat[prefix + key] = str(value)
+        else:
+            flat[prefix + key] = value
+    return flat
 
 
 def write_table(sweep_dir, points):
@@ -215,13 +246,14 @@ def _status(sweep_dir, identifier):
 
 # ---- engines --------------------------------------------------------------------------
 
-def run_local(pending, sweep_dir, jobs, progress):
+def run_local(pending, sweep_dir, scene_dir, jobs, progress):
     context = multiprocessing.get_context("spawn")   # no inherited gmsh or threads
     pool = concurrent.futures.ProcessPoolExecutor(
         max_workers=jobs, mp_context=context, initializer=_worker_init,
         initargs=(str(Path(sweep_dir) / "tmp"),))
     try:
-        futures = {pool.submit(run_point, values, str(sweep_dir)) for values in pending}
+        futures = {pool.submit(run_point, values, str(sweep_dir), str(scene_dir))
+                   for values in pending}
         _follow(futures, sweep_dir, jobs, progress, concurrent.futures.as_completed)
     except BaseException:
         for process in list(getattr(pool, "_processes", {}).values()):
@@ -231,14 +263,14 @@ def run_local(pending, sweep_dir, jobs, progress):
     pool.shutdown()
 
 
-def run_dask(pending, sweep_dir, jobs, progress, scheduler=None):
+def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None):
     from dask.distributed import Client, LocalCluster, as_completed
 
     cluster = None if scheduler else LocalCluster(
         n_workers=jobs, threads_per_worker=1, processes=True, dashboard_address=None)
     client = Client(scheduler or cluster)
     try:
-        futures = [client.submit(run_point, values, str(sweep_dir), pure=False)
+        futures = [client.submit(run_point, values, str(sweep_dir), str(scene_dir), pure=False)
                    for values in pending]
         _follow(set(futures), sweep_dir, jobs, progress, as_completed)
     finally:
@@ -263,6 +295,7 @@ ENGINES = ("local", "dask")
 def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=sys.stderr):
     """Run a sweep file; return its table. Finished runs are skipped."""
     name, points = load_sweep(path)
+    scene_dir = Path(path).resolve().parent
     if engine not in ENGINES:
         raise ParameterError(f"engine = {engine!r} must be one of {ENGINES}")
     from . import freefem
@@ -282,9 +315,9 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
     try:
         if pending:
             if engine == "dask":
-                run_dask(pending, sweep_dir, jobs, progress, scheduler)
+                run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler)
             else:
-                run_local(pending, sweep_dir, jobs, progress)
+                run_local(pending, sweep_dir, scene_dir, jobs, progress)
     finally:
         progress.close()
         table = write_table(sweep_dir, unique)

@@ -25,3 +25,22 @@ def run_freefem(tmp_path):
                            os.path.join(tmp_path, f"{Path(script).stem}.log"))
         return tmp_path
     return run
+
+
+def full_model(scene):
+    """The full model of a half model: every patch and the contact zone mirrored about
+    x1 = 0 (a patch on the axis doubles)."""
+    from orchestrate.scene_file import apply_overrides
+
+    overrides = {"symmetric": False}
+    for number, coating in enumerate(scene.coatings, start=1):
+        overrides[f"coating[{number}].start"] = -coating.end if coating.start == 0 else coating.start
+    if scene.contact_zone is not None:
+        overrides["contact_zone"] = [-scene.contact_zone[1], scene.contact_zone[1]]
+    mirrored = apply_overrides(scene, overrides)
+    off_axis = [c for c in scene.coatings if c.start > 0]
+    if off_axis:      # their mirror images join the list
+        from dataclasses import replace
+        extra = tuple(replace(c, start=-c.end, end=-c.start) for c in off_axis)
+        mirrored = apply_overrides(replace(mirrored, coatings=mirrored.coatings + extra), {})
+    return mirrored

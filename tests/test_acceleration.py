@@ -10,7 +10,8 @@ import numpy as np
 import pandas as pd
 
 from orchestrate.acceleration import Anderson
-from orchestrate.scene import Scene, Settings
+from orchestrate.scene import Settings
+from orchestrate.scene_file import paper_scene
 from orchestrate.solve import solve
 
 
@@ -60,7 +61,7 @@ def test_dependent_history_is_filtered():
 def test_the_answer_does_not_depend_on_the_loop(tmp_path):
     """The paper's loop (gamma = 1/theta, fixed rho) and the accelerated active-set loop
     (Anderson, gamma = 0.5 E/b) at a penalty where both converge: same stresses."""
-    scene = Scene()
+    scene = paper_scene()
     answers = {}
     for method in ("paper", "active-set"):
         robin = 0.5 if method == "active-set" else None

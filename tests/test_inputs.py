@@ -1,25 +1,37 @@
 """Bad input is refused before any work, with a message naming the parameter."""
 
+import os
 import subprocess
 import sys
 
 import pytest
 
-from orchestrate.scene import ParameterError, Scene, Settings
+from orchestrate.scene import ParameterError, Settings
+from orchestrate.scene_file import paper_scene
 from tests.conftest import PROJECT_DIR
 
 
-@pytest.mark.parametrize("values, parameter", [
-    ({"E1": -1.0}, "E1"), ({"E2": 0.0}, "E2"), ({"E3": -2.0}, "E3"),
-    ({"nu1": 0.5}, "nu1"), ({"nu2": 0.7}, "nu2"), ({"nu3": -1.0}, "nu3"),
-    ({"h2": 0.0}, "h2"), ({"h2": -0.1}, "h2"), ({"h2": 8.0}, "h2"), ({"h2": 9.0}, "h2"),
-    ({"height": 0.0}, "height"), ({"length": -4.0}, "length"),
-    ({"coating_length": 5.0}, "coating_length"), ({"chi": 0.0}, "chi"),
-    ({"stamp": -1e-3}, "stamp"), ({"E1": float("nan")}, "E1"),
+@pytest.mark.parametrize("values, key", [
+    ({"E1": -1.0}, "indenter.E"), ({"E2": 0.0}, "coating[1].E"), ({"E3": -2.0}, "base.E"),
+    ({"nu1": 0.5}, "indenter.nu"), ({"nu2": 0.7}, "coating[1].nu"), ({"nu3": -1.0}, "base.nu"),
+    ({"h2": 0.0}, "coating[1].thickness"), ({"h2": -0.1}, "coating[1].thickness"),
+    ({"h2": 8.0}, "coating[1].thickness"), ({"h2": 9.0}, "coating[1].thickness"),
+    ({"height": 0.0}, "indenter.height"), ({"length": -4.0}, "indenter.width"),
+    ({"coating_length": 5.0}, "coating[1].start, end"), ({"stamp": -1e-3}, "load.displacement"),
+    ({"E1": float("nan")}, "indenter.E"), ({"model": "plate"}, "coating[1].model"),
 ])
-def test_scene_refuses(values, parameter):
-    with pytest.raises(ParameterError, match=rf"^{parameter} = "):
-        Scene(**values)
+def test_the_papers_parameters_are_refused_naming_the_key_and_the_flag(values, key):
+    (name, _), = values.items()
+    with pytest.raises(ParameterError) as error:
+        paper_scene(**values)
+    message = str(error.value)
+    assert message.startswith(f"{key} = ")
+    assert f"(set by {name})" in message
+
+
+def test_chi_is_refused_naming_itself():
+    with pytest.raises(ParameterError, match=r"^chi = 0.0 must be a positive number"):
+        paper_scene(chi=0.0)
 
 
 @pytest.mark.parametrize("values, parameter", [
@@ -27,10 +39,10 @@ def test_scene_refuses(values, parameter):
     ({"theta": 0.0}, "theta"), ({"theta": -1e-3}, "theta"),
     ({"mesh_level": 0}, "mesh_level"), ({"mesh_level": 1.5}, "mesh_level"),
     ({"mesh_level": True}, "mesh_level"), ({"eps_u": 0.0}, "eps_u"),
-    ({"max_iterations": 0}, "max_iterations"), ({"model": "plate"}, "model"),
+    ({"max_iterations": 0}, "max_iterations"),
     ({"method": "fast"}, "method"), ({"robin": -1.0}, "robin"),
     ({"robin": 2.0, "theta": 1.0}, "robin"), ({"workers": "threads"}, "workers"),
-    ({"shell_elements": 0}, "shell_elements"),
+    ({"element_size": 0.0}, "element_size"),
 ])
 def test_settings_refuse(values, parameter):
     with pytest.raises(ParameterError, match=rf"^{parameter} = "):
@@ -47,14 +59,19 @@ def _cli(*arguments, env=None):
 
 
 @pytest.mark.parametrize("flag, value, parameter", [
-    ("--E2", "-1", "E2"), ("--nu1", "0.5", "nu1"), ("--h2", "8", "h2"),
-    ("--rho", "1.2", "rho"), ("--theta", "0", "theta"), ("--mesh-level", "0", "mesh_level"),
+    ("--E2", "-1", "coating[1].E = "), ("--nu1", "0.5", "indenter.nu = "),
+    ("--h2", "8", "coating[1].thickness = "), ("--rho", "1.2", "rho = "),
+    ("--theta", "0", "theta = "), ("--mesh-level", "0", "mesh_level = "),
+    ("--set", "indenter.radius=-5", "indenter.radius = "),
+    ("--set", "base.colour=1", "base.colour"),
+    ("--force", "1e-3", "method = 'paper' cannot carry load.force"),
 ])
 def test_command_line_refuses_before_any_work(flag, value, parameter, tmp_path):
     out = tmp_path / "run"
-    result = _cli("solve", "--out", str(out), flag, value)
+    extra = ["--method", "paper"] if flag == "--force" else []
+    result = _cli("solve", "--out", str(out), flag, value, *extra)
     assert result.returncode == 2
-    assert f"{parameter} = " in result.stderr
+    assert parameter in result.stderr
     assert not out.exists()
 
 
@@ -65,7 +82,6 @@ def test_mesh_level_must_be_an_integer(tmp_path):
 
 
 def test_missing_freefem_is_reported_before_any_work(tmp_path):
-    import os
     env = dict(os.environ, FREEFEM="no-such-freefem-binary")
     out = tmp_path / "run"
     result = _cli("solve", "--out", str(out), env=env)

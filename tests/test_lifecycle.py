@@ -91,6 +91,6 @@ def test_a_dying_worker_ends_the_run_with_a_clear_error(tmp_path):
     os.kill(coating[0], signal.SIGKILL)
     _, stderr = process.communicate(timeout=60)
     assert process.returncode == 3, stderr
-    assert "worker coating exited" in stderr
+    assert "worker coating1 exited" in stderr
     _assert_nothing_left(scratch)
     assert not (tmp_path / "run" / "summary.json").exists()

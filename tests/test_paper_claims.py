@@ -14,7 +14,8 @@ import pytest
 
 from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
 from orchestrate.figures import FIGURE_HEIGHTS, FIGURE_SCENES
-from orchestrate.scene import Scene, Settings
+from orchestrate.scene import Settings
+from orchestrate.scene_file import paper_scene
 from orchestrate.solve import solve
 from tests.conftest import PROJECT_DIR
 
@@ -23,7 +24,7 @@ HEIGHTS = FIGURE_HEIGHTS
 
 def _solve(arguments):
     model, h2, E2, folder = arguments
-    solve(Scene(h2=h2, E2=E2), Settings(model=model), folder)
+    solve(paper_scene(h2=h2, E2=E2, model=model), Settings(), folder)
     return folder
 
 

@@ -15,14 +15,14 @@ import math
 
 import pytest
 
-from orchestrate.mesh import interface_elements
-from orchestrate.scene import Scene, Settings
+from orchestrate.scene import Settings
+from orchestrate.scene_file import paper_scene
 from orchestrate.solve import solve
 
 
 @pytest.fixture(scope="module")
 def default_run(tmp_path_factory):
-    return solve(Scene(), Settings(), tmp_path_factory.mktemp("default"))
+    return solve(paper_scene(), Settings(), tmp_path_factory.mktemp("default"))
 
 
 def test_forces_balance(default_run):
@@ -33,12 +33,13 @@ def test_forces_balance(default_run):
 
 
 def test_contact_pressure_is_hertz_like(default_run):
-    scene = Scene()
+    scene = paper_scene()
     full_force = 2.0 * default_run["contact_force"]      # the run models half the contact
-    effective_modulus = scene.E1 / (2.0 * (1.0 - scene.nu1 ** 2))
-    half_width = math.sqrt(4.0 * full_force * scene.hertz_radius / (math.pi * effective_modulus))
+    effective_modulus = scene.indenter.E / (2.0 * (1.0 - scene.indenter.nu ** 2))
+    half_width = math.sqrt(4.0 * full_force * scene.indenter.radius
+                           / (math.pi * effective_modulus))
     peak = 2.0 * full_force / (math.pi * half_width)
-    element = scene.coating_length / interface_elements(scene, Settings())
+    element = Settings().element_size
     assert abs(-default_run["peak_contact_stress"] - peak) < 0.03 * peak
     assert abs(default_run["contact_half_width"] - half_width) < element
 
@@ -46,6 +47,6 @@ def test_contact_pressure_is_hertz_like(default_run):
 def test_halving_the_penalty_changes_the_peak_stress_by_less_than_a_thousandth(
         default_run, tmp_path):
     settings = Settings()
-    halved = solve(Scene(), Settings(theta=settings.theta / 2), tmp_path)
+    halved = solve(paper_scene(), Settings(theta=settings.theta / 2), tmp_path)
     change = abs(halved["peak_contact_stress"] / default_run["peak_contact_stress"] - 1.0)
     assert change < 1e-3

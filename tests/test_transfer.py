@@ -1,61 +1,94 @@
-"""Interface transfer between the P2 bodies and the P4 shell.
+"""Interface transfer between the P2 bodies and the P4 shell, flat and curved.
 
 Both sides of an interface read the same interface points and evaluate their traces
-there. A field that both spaces represent exactly (a quadratic along the interface)
-must pass unchanged: imposed on a worker as Robin data with an overwhelming Robin
-coefficient, it comes back as that worker's trace, with the sign conventions of every
-trace (outward normals on S12, global components on S23) and, for the shell, the same
-w on its top (S21) and its bottom fibre (S23)."""
+there. Data imposed on a worker with an overwhelming Robin coefficient must come back
+as that worker's trace, with every convention intact: a contact trace is the
+displacement along the side's outward normal, a bond trace is (tangential, normal) in
+the face's basis, and a shell's w is one field on its top (contact) and its bottom fibre
+(bond). The data are smooth fields both spaces pass unchanged at the interface points
+(a P2 body takes its nodal values there; a P4 shell element matches three values per
+element)."""
 
 import numpy as np
 import pytest
 
-from orchestrate.scene import Scene, Settings
+from orchestrate.discretization import discretize
+from orchestrate.exchange import parse_reply, reply_count, request_arrays
+from orchestrate.scene import Settings
+from orchestrate.scene_file import SCENES_DIR, load_scene, paper_scene
 from orchestrate.subdomains import Subdomains, write_inputs
 from orchestrate.worker import CMD_SOLVE
 
 STIFF = 1e12      # Robin coefficient: the data dominate every elastic stiffness
 
 
-def _quadratics(x):
-    """(u1, u2) along the interface; u1(0) = 0 as the symmetry conditions require."""
-    return 1e-3 * (0.3 * x - 0.2 * x ** 2), 1e-3 * (0.5 - 0.4 * x + 0.7 * x ** 2)
+def _fields(s):
+    """Tangential and normal displacement along the face; zero tangential on the axis,
+    as the symmetry conditions require."""
+    return 1e-3 * (0.3 * s - 0.2 * s ** 2), 1e-3 * (0.5 - 0.4 * s + 0.7 * s ** 2)
 
 
-@pytest.fixture(scope="module")
-def workers(tmp_path_factory):
+@pytest.fixture(scope="module", params=["paper", "roller"])
+def workers(request, tmp_path_factory):
     workdir = str(tmp_path_factory.mktemp("transfer"))
-    scene = Scene(stamp=0.0)
-    files, contact, bond = write_inputs(scene, Settings(), workdir)
-    subdomains = Subdomains(scene, Settings(), files, workdir, workdir)
-    yield subdomains.workers, contact.x
+    if request.param == "paper":
+        scene = paper_scene(stamp=0.0)
+    else:
+        scene, _ = load_scene(SCENES_DIR / "roller.toml")
+    problem = discretize(scene, Settings())
+    subdomains = Subdomains(problem, write_inputs(problem, workdir), workdir, workdir)
+    yield problem, subdomains
     subdomains.close()
+
+
+def _send(problem, subdomains, name, data):
+    """One solve of one worker with the given data on each of its sides (None: no
+    Robin term there); returns its traces by (interface index, side)."""
+    sides = subdomains.sides[name]
+    full = {}
+    for i, side in sides:
+        interface = problem.interfaces[i]
+        given = data.get((i, side))
+        if given is None:
+            full[i, side] = (np.zeros(interface.size), np.zeros((interface.components, interface.size)))
+        else:
+            full[i, side] = (np.full(interface.size, STIFF), np.atleast_2d(given))
+    worker = subdomains.workers[name]
+    worker.send(CMD_SOLVE, request_arrays(sides, full))
+    arrays = worker.receive_arrays(reply_count(problem, sides))
+    return parse_reply(problem, sides, arrays)[0]
 
 
 def _close(received, expected):
     return np.max(np.abs(received - expected)) < 1e-9 * np.max(np.abs(expected))
 
 
-def test_omega3_trace_passes_a_quadratic_unchanged(workers):
-    lower, x = workers[0]["lower"], workers[1]
-    u1, u2 = _quadratics(x)
-    alpha = np.full(len(x), STIFF)
-    trace1, trace2, _ = lower.request(CMD_SOLVE, [alpha, u1, u2], 3)
-    assert _close(trace1, u1) and _close(trace2, u2)
+def test_the_bases_bond_trace_passes_data_unchanged(workers):
+    problem, subdomains = workers
+    i = problem.interfaces.index(problem.bonds[0])
+    tangential, normal = _fields(problem.interfaces[i].s)
+    traces = _send(problem, subdomains, "base", {(i, 1): [tangential, normal]})
+    assert _close(traces[i, 1][0], tangential) and _close(traces[i, 1][1], normal)
 
 
-def test_omega1_normal_trace_passes_a_quadratic_unchanged(workers):
-    upper, x = workers[0]["upper"], workers[1]
-    _, u2 = _quadratics(x)
-    normal, _ = upper.request(CMD_SOLVE, [np.full(len(x), STIFF), u2], 2)
-    assert _close(normal, u2)
+def test_the_indenters_normal_trace_passes_data_unchanged(workers):
+    problem, subdomains = workers
+    data = {}
+    for contact in problem.contacts:
+        i = problem.interfaces.index(contact)
+        data[i, 0] = _fields(contact.s)[1]
+    traces = _send(problem, subdomains, "indenter", data)
+    for key, values in data.items():
+        assert _close(traces[key], values)
 
 
-def test_shell_traces_pass_a_quadratic_unchanged(workers):
-    coating, x = workers[0]["coating"], workers[1]
-    u1, u2 = _quadratics(x)
-    no_contact = np.zeros(len(x))
-    w, fibre1, fibre2, _ = coating.request(
-        CMD_SOLVE, [no_contact, no_contact, np.full(len(x), STIFF), u1, u2], 4)
-    assert _close(fibre1, u1) and _close(fibre2, u2)
-    assert _close(w, u2)          # the top moves with the bottom fibre: w is one field
+def test_the_shells_traces_pass_data_unchanged_and_share_w(workers):
+    problem, subdomains = workers
+    bond = problem.interfaces.index(problem.bonds[0])
+    contact = next(problem.interfaces.index(c) for c in problem.contacts
+                   if c.sides[1].subdomain == "coating1")
+    tangential, normal = _fields(problem.interfaces[bond].s)
+    traces = _send(problem, subdomains, "coating1", {(bond, 0): [tangential, normal]})
+    assert _close(traces[bond, 0][0], tangential) and _close(traces[bond, 0][1], normal)
+    # the top moves with the bottom fibre along the normal: w is one field
+    assert _close(traces[contact, 1], normal)

@@ -1,0 +1,543 @@
+"""The scene as a list of subdomains and of the interfaces between them.
+
+Subdomains: the indenter and the base (P2 elastic bodies meshed by gmsh), and one per
+coating patch (a shell on its mid-line, or a P2 body on a structured mesh). Interfaces:
+
+    bond-coatingI     patch I's bottom bonded to the base (side A: the patch, side B:
+                      the base), two components: tangential and normal displacement;
+    contact-coatingI  the indenter (side A) over patch I's top (side B);
+    contact-baseJ     the indenter over the J-th stretch of bare base (from left to
+                      right) inside the contact zone.
+
+Contact interfaces come first, ordered along the face, then bonds, patch by patch.
+Every interface is a set of points shared by its two sides: the P2 nodes of its
+elements (ends and midpoints) with Simpson's weights of the face's arc length, so that
+the Robin loop and the monolithic solve integrate every coupling term alike and the
+penalty acts node to node. (Gauss points, 5 per element, exact for the P2 x P4
+products, were tried first: they constrain more points per element than a P2 trace has
+nodes, and the contact pressure oscillated near the edge of the contact zone; at the
+nodes it is smooth and the contact set settles in fewer updates.) Each side evaluates its trace
+at its own place for each point: a body at the point of its (polygonal) mesh, a shell
+at the arc length xi along its mid-line; a contact trace is the displacement along the
+side's outward normal (towards the other body), a bond trace the tangential and normal
+components in the face's basis (t, n).
+
+Elements along the faces have the length Settings.element_size / mesh_level; a 2D
+coating has one layer of cells per b/8 of thickness, and cells at most MAX_ASPECT as
+wide as high, so a thin 2D coating refines its interface. A mirror-symmetric full
+model (Scene.mirror_symmetric) gets mirror-symmetric elements and meshes.
+"""
+
+from dataclasses import dataclass, field
+import math
+from typing import Optional
+
+import numpy as np
+
+from .geometry import IndenterFace, base_face, lowest_point
+from .scene import ParameterError
+
+# The 2D coating: one layer of cells per b/8 of height, as the paper's 64 ... 512
+# triangles for h2 = b/8 ... b, and at least one; a cell at most MAX_ASPECT times as
+# wide as it is high (the cost the paper alludes to for h2 <= b/16).
+COATING_LAYER_HEIGHT = 0.125
+MAX_ASPECT = 2.0
+
+
+@dataclass(frozen=True, eq=False)
+class Side:
+    """Where one side of an interface takes its trace, point by point.
+
+    body:  ``place`` (n, 2) points of its mesh; ``coefficients`` one (n, 2) array per
+           component: trace = c1 u1 + c2 u2 there.
+    shell: ``place`` (n,) arc lengths xi along its mid-line; ``coefficients`` one (n, 3)
+           array per component: trace = cV v + cW w + cG gamma there."""
+    subdomain: str
+    place: np.ndarray
+    coefficients: tuple
+
+
+@dataclass(frozen=True, eq=False)
+class Interface:
+    name: str
+    kind: str                  # "contact" or "bond"
+    s: np.ndarray              # points: arc length along the base's top face
+    position: np.ndarray       # (n, 2): the points on the partner (contact) or base (bond) face
+    normal: np.ndarray         # (n, 2): unit normal of that face, towards the indenter
+    tangent: np.ndarray        # (n, 2)
+    weight: np.ndarray         # Simpson's weights of the face's arc length
+    gap: np.ndarray            # initial gap along the normal (zero on a bond)
+    sides: tuple               # (Side A, Side B)
+
+    @property
+    def size(self):
+        return len(self.s)
+
+    @property
+    def components(self):
+        return 1 if self.kind == "contact" else 2
+
+    def integrate(self, values):
+        return float(np.dot(self.weight, values))
+
+
+@dataclass(frozen=True)
+class FacePiece:
+    """A piece of a body's face for the mesher: an interface piece is exactly its
+    vertices, one mesh edge between neighbours (``uniform``: equal edges on a line, one
+    transfinite gmsh line); a free piece is a curve between its end points: a line, an
+    arc about the origin, or the indenter's profile."""
+    label: str                 # "Contact", "Bond" or "Free"
+    points: np.ndarray         # (k, 2)
+    curve: str                 # "edges", "line", "arc" or "profile"
+    uniform: bool = False
+
+
+@dataclass(frozen=True)
+class BodyPlan:
+    """A body meshed by gmsh (orchestrate/mesh.py): its outline from its face pieces.
+
+    shape "indenter": face at the bottom, stamp on top at x2 = far; "block": face on top,
+    clamped at x2 = far = 0; "roller": face on the circle of radius ``radius``, clamped on
+    the bore. ``left``/``right``: x1 of the ends of an indenter or block; the face runs
+    from left to right (a roller's from its top clockwise). A half model (``half``) has
+    symmetry at x1 = 0 and only x1 >= 0; ``mirror``: mesh that half and mirror it."""
+    shape: str
+    face: tuple
+    left: float
+    right: float
+    far: float
+    half: bool
+    mirror: bool
+    face_size: float           # element length on the face, where the mesh is finest
+    near: float                # the face stays that fine up to this far from its interfaces
+    max_size: float
+    mesh_level: int
+    radius: float = 0.0        # roller
+    bore: float = 0.0          # roller
+    indenter: Optional[object] = None   # the Indenter, for a profile curve
+    lowest: float = 0.0        # the indenter's lowest point
+
+
+@dataclass(frozen=True)
+class CoatingPlan:
+    """A 2D coating on a structured mesh: columns at ``nodes`` (arc length on the base's
+    face), ``layers`` layers up to ``thickness``."""
+    face: object
+    nodes: np.ndarray
+    thickness: float
+    layers: int
+    top_label: str             # "Contact", or "Free" outside the contact zone
+    start_label: str           # "Symmetry" on the axis of a half model, else "Free"
+
+
+@dataclass(frozen=True)
+class ShellSpec:
+    """A coating patch as a shell on its mid-line: nodes xi (arc length from its start),
+    constant curvature, its start on the symmetry axis of a half model or free."""
+    nodes: np.ndarray
+    curvature: float
+    thickness: float
+    shear_factor: float
+    symmetric_start: bool
+    face: object
+    s_start: float             # arc length on the base's face of the patch's start
+    stretch: float             # mid-line length per unit base-face length
+
+
+@dataclass(frozen=True)
+class Subdomain:
+    name: str
+    kind: str                  # "body" or "shell"
+    E: float
+    nu: float
+    plan: object               # BodyPlan, CoatingPlan or ShellSpec
+    stamp: bool = False        # the indenter: loaded by the stamp
+
+
+@dataclass(frozen=True)
+class Problem:
+    scene: object
+    settings: object
+    subdomains: dict           # name -> Subdomain, in a fixed order
+    interfaces: tuple
+    lowest: float              # height of the indenter's lowest point at first touch
+    normal_mismatch: float     # largest angle (rad) between paired normals
+
+    def sides_of(self, name):
+        """(interface index, side index) of every side of a subdomain, in interface order."""
+        return [(i, k) for i, interface in enumerate(self.interfaces)
+                for k, side in enumerate(interface.sides) if side.subdomain == name]
+
+    @property
+    def contacts(self):
+        return [i for i in self.interfaces if i.kind == "contact"]
+
+    @property
+    def bonds(self):
+        return [i for i in self.interfaces if i.kind == "bond"]
+
+
+# ---- elements along the face -----------------------------------------------------------
+
+def _count(length, size):
+    return max(1, round(length / size))
+
+
+def element_nodes(s0, s1, count, split_at_zero=False):
+    """Ends of ``count(length)`` equal elements on [s0, s1]; with ``split_at_zero`` an
+    interval across 0 has a node there, its left half the mirror image of its right."""
+    if split_at_zero and s0 < 0 < s1:
+        left, right = count(-s0), count(s1)
+        return np.concatenate([-np.linspace(0.0, -s0, left + 1)[::-1][:-1],
+                               np.linspace(0.0, s1, right + 1)])
+    return np.linspace(s0, s1, count(s1 - s0) + 1)
+
+
+def simpson(nodes, stretch=1.0):
+    """The P2 nodes of the elements (ends, midpoints) and Simpson's weights L/6, 4L/6,
+    L/6 of their length, ``stretch`` times the length in s."""
+    size = np.diff(nodes)
+    s = np.empty(2 * len(size) + 1)
+    s[0::2] = nodes
+    s[1::2] = nodes[:-1] + 0.5 * size
+    length = size * stretch
+    weight = np.zeros_like(s)
+    weight[0:-1:2] += length / 6.0
+    weight[1::2] += 4.0 * length / 6.0
+    weight[2::2] += length / 6.0
+    return s, weight
+
+
+def chord_points(exact):
+    """A body's mesh points for the P2 nodes whose exact places are ``exact``: the ends
+    of the elements, and the midpoints of the straight edges between them."""
+    points = exact.copy()
+    points[1::2] = exact[0:-2:2] + 0.5 * (exact[2::2] - exact[0:-2:2])
+    return points
+
+
+# ---- the problem ------------------------------------------------------------------------
+
+def coating_layers(coating, level):
+    return level * max(1, round(coating.thickness / COATING_LAYER_HEIGHT))
+
+
+def discretize(scene, settings):
+    """The subdomains and interfaces of a scene at the settings' mesh."""
+    face = base_face(scene.base)
+    level = settings.mesh_level
+    size = settings.element_size / level
+    mirror = scene.mirror_symmetric
+
+    def patch_count(coating):
+        if coating.model != "elastic":
+            return lambda length: _count(length, size)
+        layer = coating.thickness / coating_layers(coating, level)
+        return lambda length: max(_count(length, size), math.ceil(length / (MAX_ASPECT * layer)))
+
+    patches = []
+    for number, coating in enumerate(scene.coatings, start=1):
+        s0, s1 = face.s_of_x1(coating.start), face.s_of_x1(coating.end)
+        patches.append((number, coating, element_nodes(s0, s1, patch_count(coating), mirror)))
+    patches.sort(key=lambda item: item[2][0])
+
+    def partners_in(s_lo, s_hi):
+        """(s-nodes, offset, name, patch number or None) of every face the indenter may
+        touch in [s_lo, s_hi], along the face; the patches among them."""
+        partners, in_zone = [], set()
+        for number, coating, nodes in patches:
+            if nodes[-1] <= s_lo or nodes[0] >= s_hi:
+                continue
+            if nodes[0] < s_lo - 1e-12 or nodes[-1] > s_hi + 1e-12:
+                raise ParameterError(
+                    f"coating[{number}] [{coating.start!r}, {coating.end!r}] reaches beyond "
+                    "the part of the base the indenter's face covers: widen indenter.width or "
+                    "set contact_zone to leave the patch out", "indenter.width")
+            partners.append((nodes, coating.thickness, f"contact-coating{number}", number))
+            in_zone.add(number)
+        bare = _bare_stretches(s_lo, s_hi, [nodes for _, _, nodes in patches])
+        for number, (a, b) in enumerate(bare, start=1):
+            partners.append((element_nodes(a, b, lambda length: _count(length, size), mirror),
+                             0.0, f"contact-base{number}", None))
+        partners.sort(key=lambda item: item[0][0])
+        if not partners:
+            raise ParameterError("the contact zone is empty: the indenter's face, the base's "
+                                 "face and contact_zone do not overlap", "contact_zone")
+        return partners, in_zone
+
+    def lowest_over(partners):
+        """The indenter's lowest point: its face passes above every partner face."""
+        samples = [face.point(np.linspace(n[0], n[-1], 50 * len(n)), offset)
+                   for n, offset, _, _ in partners]
+        samples += [face.point(n, offset) for n, offset, _, _ in partners]
+        return lowest_point(scene.indenter, np.vstack(samples))
+
+    s_lo, s_hi = _contact_range(scene, face)
+    partners, in_zone = partners_in(s_lo, s_hi)
+    lowest = lowest_over(partners)
+    # on a curved base, the normals of the zone's far points may pass beside the
+    # indenter's face: the zone ends where they reach the face's end
+    clipped = _under_indenter(scene, face, IndenterFace(scene.indenter, lowest), s_lo, s_hi)
+    if clipped != (s_lo, s_hi):
+        partners, in_zone = partners_in(*clipped)
+        lowest = lowest_over(partners)
+    indenter_face = IndenterFace(scene.indenter, lowest)
+
+    contacts, mismatch = [], 0.0
+    for nodes, offset, name, number in partners:
+        s, weight = simpson(nodes, face.stretch(offset))
+        position = face.point(s, offset)
+        normal, tangent = face.normal(s), face.tangent(s)
+        gap, touching = indenter_face.pair(position, normal)
+        if np.any(gap < -1e-12 * (1.0 + np.abs(position[:, 1]))):
+            raise AssertionError("negative initial gap: the lowest point is wrong")
+        indenter_place = _indenter_place(touching, scene.indenter, lowest)
+        _check_under_indenter(scene, indenter_place)
+        partner = f"coating{number}" if number is not None else "base"
+        if number is not None and scene.coatings[number - 1].model == "shell":
+            coating = scene.coatings[number - 1]
+            spec_stretch = face.stretch(0.5 * coating.thickness)
+            partner_side = Side(partner, (s - nodes[0]) * spec_stretch,
+                                (_shell_coefficients(len(s), 0.0, 1.0, 0.0),))
+        else:
+            partner_side = Side(partner, chord_points(position), (normal.copy(),))
+        indenter_side = Side("indenter", indenter_place, (-normal,))
+        contacts.append(Interface(name, "contact", s, position, normal, tangent, weight,
+                                  np.maximum(gap, 0.0), (indenter_side, partner_side)))
+        face_normal = indenter_face.normal(touching[:, 0])
+        cosine = np.clip(-np.sum(face_normal * normal, axis=1), -1.0, 1.0)
+        mismatch = max(mismatch, float(np.max(np.arccos(cosine))))
+
+    bonds, subdomains = [], {}
+    for number, coating, nodes in sorted(patches, key=lambda item: item[0]):
+        s, weight = simpson(nodes)
+        position = face.point(s)
+        normal, tangent = face.normal(s), face.tangent(s)
+        name = f"coating{number}"
+        on_axis = scene.symmetric and nodes[0] == 0.0
+        if coating.model == "shell":
+            stretch = face.stretch(0.5 * coating.thickness)
+            spec = ShellSpec((nodes - nodes[0]) * stretch, face.curvature / stretch,
+                             coating.thickness, coating.shear_factor, on_axis, face,
+                             float(nodes[0]), stretch)
+            n = len(s)
+            coating_side = Side(name, (s - nodes[0]) * stretch, (
+                _shell_coefficients(n, 1.0, 0.0, -0.5 * coating.thickness),
+                _shell_coefficients(n, 0.0, 1.0, 0.0)))
+            subdomains[name] = Subdomain(name, "shell", coating.E, coating.nu, spec)
+        else:
+            plan = CoatingPlan(face, nodes, coating.thickness, coating_layers(coating, level),
+                               "Contact" if number in in_zone else "Free",
+                               "Symmetry" if on_axis else "Free")
+            coating_side = Side(name, chord_points(position), (tangent.copy(), normal.copy()))
+            subdomains[name] = Subdomain(name, "body", coating.E, coating.nu, plan)
+        base_side = Side("base", chord_points(position), (tangent.copy(), normal.copy()))
+        bonds.append(Interface(f"bond-{name}", "bond", s, position, normal, tangent, weight,
+                               np.zeros_like(s), (coating_side, base_side)))
+
+    interfaces = tuple(contacts + bonds)
+    # the finest element on any face, as length / elements (the mesh's size field)
+    face_size = min(float(i.s[-1] - i.s[0]) / ((i.size - 1) // 2) for i in interfaces)
+    indenter_plan = _indenter_plan(scene, settings, indenter_face, contacts, face_size)
+    base_plan = _base_plan(scene, settings, face, contacts, bonds, face_size)
+    ordered = {"indenter": Subdomain("indenter", "body", scene.indenter.E, scene.indenter.nu,
+                                     indenter_plan, stamp=True)}
+    ordered.update((name, subdomains[name]) for name in sorted(
+        subdomains, key=lambda n: int(n[len("coating"):])))
+    ordered["base"] = Subdomain("base", "body", scene.base.E, scene.base.nu, base_plan)
+    return Problem(scene, settings, ordered, interfaces, lowest, mismatch)
+
+
+def _shell_coefficients(n, c_v, c_w, c_gamma):
+    return np.tile([c_v, c_w, c_gamma], (n, 1)).astype(float)
+
+
+def _contact_range(scene, face):
+    """The arc-length range of the base's face where contact may happen: under the
+    indenter's face, on the base's face (a roller's upper half), inside contact_zone."""
+    indenter, base = scene.indenter, scene.base
+    lo = 0.0 if scene.symmetric else max(indenter.centre - indenter.width, -base.top)
+    hi = min(indenter.width if scene.symmetric else indenter.centre + indenter.width, base.top)
+    if scene.contact_zone is not None:
+        lo, hi = max(lo, scene.contact_zone[0]), min(hi, scene.contact_zone[1])
+    return face.s_of_x1(lo), face.s_of_x1(hi)
+
+
+def _under_indenter(scene, face, indenter_face, s_lo, s_hi):
+    """[s_lo, s_hi] shrunk so that the normal of every point in it (of the base's face,
+    and of the coatings' tops on it) meets the indenter's face within its ends."""
+    indenter = scene.indenter
+    lo = 0.0 if scene.symmetric else indenter.centre - indenter.width
+    hi = indenter.width if scene.symmetric else indenter.centre + indenter.width
+    offsets = [0.0] + [c.thickness for c in scene.coatings]
+
+    def reach(s):
+        points = np.vstack([face.point(np.array([s]), t) for t in offsets])
+        normals = np.repeat(face.normal(np.array([s])), len(offsets), axis=0)
+        _, touching = indenter_face.pair(points, normals)
+        return touching[:, 0].min(), touching[:, 0].max()
+
+    def inside(s):
+        low, high = reach(s)
+        return low >= lo - 1e-12 and high <= hi + 1e-12
+
+    ends = []
+    for end, other in ((s_lo, s_hi), (s_hi, s_lo)):
+        if inside(end):
+            ends.append(end)
+            continue
+        good, bad = other, end            # bisect between a point under it and the end
+        for _ in range(60):
+            middle = 0.5 * (good + bad)
+            good, bad = (middle, bad) if inside(middle) else (good, middle)
+        ends.append(good)
+    return tuple(ends)
+
+
+def _bare_stretches(s_lo, s_hi, patch_nodes, shortest=1e-9):
+    """The parts of [s_lo, s_hi] no patch covers."""
+    stretches, start = [], s_lo
+    for nodes in sorted(patch_nodes, key=lambda n: n[0]):
+        a, b = nodes[0], nodes[-1]
+        if a - start > shortest and a > s_lo and start < s_hi:
+            stretches.append((start, min(a, s_hi)))
+        start = max(start, b)
+    if s_hi - start > shortest:
+        stretches.append((start, s_hi))
+    return stretches
+
+
+def _indenter_place(touching, indenter, lowest):
+    """The indenter's mesh points for the contact points: on its face (``shaped``) or on
+    the flat line of its lowest point (``flat``), chord midpoints between the ends."""
+    if indenter.face_mesh == "flat":
+        touching = np.column_stack([touching[:, 0], np.full(len(touching), lowest)])
+    return chord_points(touching)
+
+
+def _check_under_indenter(scene, place):
+    indenter = scene.indenter
+    lo = 0.0 if scene.symmetric else indenter.centre - indenter.width
+    hi = indenter.width if scene.symmetric else indenter.centre + indenter.width
+    x = place[:, 0]
+    if np.any(x < lo - 1e-9) or np.any(x > hi + 1e-9):
+        raise ParameterError(
+            f"indenter.width = {indenter.width!r}: the indenter's face (x1 in [{lo:g}, {hi:g}]) "
+            f"does not reach every point of the contact zone (x1 in [{x.min():.4g}, "
+            f"{x.max():.4g}]): widen it or narrow contact_zone", "indenter.width")
+
+
+# ---- body plans -------------------------------------------------------------------------
+
+GROWTH = 0.115     # mesh size grows by GROWTH per unit distance from the face (level 1),
+MAX_SIZE = 0.5     # up to MAX_SIZE (or a sixteenth of a larger body): the paper's ~1370
+                   # triangles per body
+
+
+def _interface_piece(label, vertices):
+    edges = np.diff(vertices, axis=0)
+    lengths = np.linalg.norm(edges, axis=1)
+    straight = np.all(np.abs(edges[:, 1]) == 0) or np.all(np.abs(edges[:, 0]) == 0)
+    uniform = bool(straight and np.allclose(lengths, lengths[0], rtol=1e-12, atol=0))
+    return FacePiece(label, vertices, "edges", uniform)
+
+
+def _near(pieces):
+    """How far from its interfaces a face stays fine: as far again as they reach."""
+    interface = [p.points for p in pieces if p.label != "Free"]
+    if not interface:
+        return 0.0
+    points = np.vstack(interface)
+    return float(np.max(np.ptp(points, axis=0)))
+
+
+def _indenter_plan(scene, settings, indenter_face, contacts, face_size):
+    indenter = scene.indenter
+    half, mirror = scene.symmetric, scene.mirror_symmetric
+    left = 0.0 if half or mirror else indenter.centre - indenter.width
+    right = indenter.width if half else indenter.centre + indenter.width
+    pieces = [_interface_piece("Contact", c.sides[0].place[0::2]) for c in contacts]
+    if mirror:
+        pieces = _right_half(pieces)
+    free_curve = "line" if indenter.flat or indenter.face_mesh == "flat" else "profile"
+    height = (lambda x: indenter_face.lowest) if free_curve == "line" else indenter_face.height
+    first, last = pieces[0].points[0], pieces[-1].points[-1]
+    face = []
+    if first[0] > left + 1e-12:
+        face.append(FacePiece("Free", np.array([[left, height(left)], first]), free_curve))
+    face += pieces
+    if last[0] < right - 1e-12:
+        face.append(FacePiece("Free", np.array([last, [right, height(right)]]), free_curve))
+    top = indenter_face.lowest + indenter.height
+    return BodyPlan("indenter", tuple(face), left, right, top, half, mirror, face_size,
+                    _near(face), _max_size(indenter.width, indenter.height),
+                    settings.mesh_level, indenter=indenter, lowest=indenter_face.lowest)
+
+
+def _right_half(pieces):
+    """The pieces of a mirror-symmetric face on x1 >= 0 (a node sits at x1 = 0)."""
+    kept = []
+    for piece in pieces:
+        x = piece.points[:, 0]
+        if x[-1] <= 0:
+            continue
+        if x[0] < 0:
+            piece = _interface_piece(piece.label, piece.points[x >= 0])
+        kept.append(piece)
+    return kept
+
+
+def _max_size(*extent):
+    return max(MAX_SIZE, max(extent) / 16.0)
+
+
+def _base_plan(scene, settings, face, contacts, bonds, face_size):
+    base = scene.base
+    half, mirror = scene.symmetric, scene.mirror_symmetric
+    runs = sorted([(c.s[0], c.s[-1], "Contact", c) for c in contacts
+                   if c.sides[1].subdomain == "base"]
+                  + [(b.s[0], b.s[-1], "Bond", b) for b in bonds], key=lambda r: r[0])
+    if base.shape == "block":
+        start = 0.0 if half or mirror else -base.width
+        end = base.width
+    else:
+        start = 0.0 if half or mirror else -math.pi * base.radius
+        end = math.pi * base.radius
+    pieces = []
+    for a, b, label, interface in runs:
+        vertices = interface.sides[1].place[0::2]
+        pieces.append(_interface_piece(label, vertices))
+    if mirror:
+        pieces = _right_half(pieces) if base.shape == "block" else _right_half_roller(pieces)
+    free = "line" if base.shape == "block" else "arc"
+    face_pieces, cursor = [], start
+
+    def ends(a, b):
+        points = face.point(np.array([a, b]))
+        points[np.abs(points[:, 0]) < 1e-12 * abs(end), 0] = 0.0   # on the axis exactly
+        return points
+
+    def s_of(point):
+        return point[0] if base.shape == "block" else base.radius * math.atan2(point[0], point[1])
+
+    for piece in pieces:
+        s0 = s_of(piece.points[0])
+        if s0 > cursor + 1e-12:
+            face_pieces.append(FacePiece("Free", ends(cursor, s0), free))
+        face_pieces.append(piece)
+        cursor = s_of(piece.points[-1])
+    if end > cursor + 1e-12:
+        face_pieces.append(FacePiece("Free", ends(cursor, end), free))
+    if base.shape == "block":
+        return BodyPlan("block", tuple(face_pieces), start, end, 0.0, half, mirror, face_size,
+                        _near(face_pieces), _max_size(base.width, base.height),
+                        settings.mesh_level)
+    return BodyPlan("roller", tuple(face_pieces), start, end, 0.0, half, mirror, face_size,
+                    _near(face_pieces), _max_size(base.radius), settings.mesh_level,
+                    radius=base.radius, bore=base.shaft_radius)
+
+
+def _right_half_roller(pieces):
+    return [p if p.points[0][0] >= 0 else _interface_piece(p.label, p.points[p.points[:, 0] >= 0])
+            for p in pieces if p.points[-1][0] > 0]

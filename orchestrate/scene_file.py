@@ -1,0 +1,259 @@
+"""Scene files (TOML) and the overrides that flags and sweeps apply to a scene.
+
+A scene file has the tables of orchestrate/scene.py (README, "Scene files"):
+
+    symmetric = true
+    contact_zone = [0.0, 2.0]      # optional
+    [indenter]   radius, profile, face_mesh, width, height, centre, E, nu
+    [base]       shape, width, height, radius, bore, E, nu
+    [[coating]]  start, end, thickness, E, nu, model, shear_factor   (any number)
+    [load]       displacement or force
+    [settings]   any solver setting (optional; flags override it)
+
+An unknown key, a value of the wrong type or out of range is refused before any work,
+naming the file, the key and the allowed range.
+
+Overrides name a value either by a dotted key (``indenter.radius``, ``coating.E`` for
+every patch, ``coating[2].E`` for the second, ``load.force``) or by the paper's scene
+parameters of METHOD.md, kept as shorthands (``h2``, ``E2``, ``model``, ...; the table
+SHORTHANDS), so that the paper's flags and sweep files keep working.
+"""
+
+from dataclasses import fields
+import math
+from pathlib import Path
+import re
+import tomllib
+
+from .paths import PACKAGE_DIR
+from .scene import (Base, Coating, Indenter, Load, ParameterError, Scene, Settings)
+
+SCENES_DIR = PACKAGE_DIR / "scenes"
+PAPER_SCENE_FILE = SCENES_DIR / "paper.toml"
+
+_TABLES = {"indenter": Indenter, "base": Base, "coating": Coating, "load": Load}
+_TOP_LEVEL = ("symmetric", "contact_zone", "indenter", "base", "coating", "load", "settings")
+
+# The paper's scene parameters (METHOD.md) as shorthands: name -> (meaning, dotted keys)
+SHORTHANDS = {
+    "length": ("l, the width of both bodies", ("indenter.width", "base.width")),
+    "height": ("h, the height of both bodies", ("indenter.height", "base.height")),
+    "coating_length": ("l2: the coating covers x1 in [0, l2]", ("coating.end",)),
+    "h2": ("coating thickness", ("coating.thickness",)),
+    "E1": ("Young's modulus of the indenter (Omega1)", ("indenter.E",)),
+    "E2": ("Young's modulus of the coating", ("coating.E",)),
+    "E3": ("Young's modulus of the base (Omega3)", ("base.E",)),
+    "nu1": ("Poisson ratio of the indenter", ("indenter.nu",)),
+    "nu2": ("Poisson ratio of the coating", ("coating.nu",)),
+    "nu3": ("Poisson ratio of the base", ("base.nu",)),
+    "shear_factor": ("k' of the shell", ("coating.shear_factor",)),
+    "model": ("coating model of every patch: shell or elastic", ("coating.model",)),
+    "chi": ("initial gap chi x1^2: a parabolic face of radius 1/(2 chi)", ("indenter.radius",)),
+    "stamp": ("Delta, the stamp's descent", ("load.displacement",)),
+    "force": ("total force per unit width on the whole body", ("load.force",)),
+}
+_PATCH_KEY = re.compile(r"^coating\[(\d+)\]\.(\w+)$")
+
+
+def _where(path):
+    return f"{path}: " if path else ""
+
+
+def _check_keys(table, allowed, where, path):
+    if not isinstance(table, dict):
+        raise ParameterError(f"{_where(path)}{where} must be a table")
+    unknown = sorted(set(table) - set(allowed))
+    if unknown:
+        raise ParameterError(f"{_where(path)}unknown key {where}{unknown[0]} (allowed in "
+                             f"{where.rstrip('.') or 'the top level'}: {', '.join(allowed)})",
+                             where + unknown[0])
+
+
+def _build(cls, table, where, path):
+    _check_keys(table, [f.name for f in fields(cls)], where, path)
+    return cls(**table)
+
+
+def scene_from_table(data, path=None):
+    """(Scene, settings values) from a parsed scene file; errors name path and key."""
+    _check_keys(data, _TOP_LEVEL, "", path)
+    try:
+        for name in ("indenter", "base", "load"):
+            if name not in data:
+                raise ParameterError(f"[{name}] is missing: a scene needs an indenter, a "
+                                     "base and a load", name)
+        coatings = data.get("coating", [])
+        if not isinstance(coatings, list):
+            raise ParameterError("coating must be an array of tables, [[coating]]", "coating")
+        scene = Scene(
+            indenter=_build(Indenter, data["indenter"], "indenter.", path),
+            base=_build(Base, data["base"], "base.", path),
+            coatings=tuple(_build(Coating, c, f"coating[{i}].", path)
+                           for i, c in enumerate(coatings, start=1)),
+            load=_build(Load, data["load"], "load.", path),
+            symmetric=data.get("symmetric", True),
+            contact_zone=data.get("contact_zone"))
+    except ParameterError as error:
+        if path and not str(error).startswith(f"{path}:"):
+            raise ParameterError(f"{path}: {error}", error.key) from None
+        raise
+    except TypeError as error:          # a value of a type the dataclass cannot take
+        raise ParameterError(f"{_where(path)}{error}") from None
+    settings = data.get("settings", {})
+    _check_keys(settings, [f.name for f in fields(Settings)], "settings.", path)
+    return scene, settings
+
+
+def load_scene(path):
+    """(Scene, settings values) of a scene file."""
+    path = Path(path)
+    try:
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+    except OSError as error:
+        raise ParameterError(f"scene file {path}: {error.strerror}") from None
+    except tomllib.TOMLDecodeError as error:
+        raise ParameterError(f"{path}: not a valid TOML file: {error}") from None
+    return scene_from_table(data, path)
+
+
+def paper_scene(**shorthands):
+    """The paper's scene (orchestrate/scenes/paper.toml) with shorthand overrides, e.g.
+    ``paper_scene(h2=0.5, E2=5.0, model="elastic")``."""
+    scene, _ = load_scene(PAPER_SCENE_FILE)
+    return apply_overrides(scene, shorthands)
+
+
+# ---- overrides -------------------------------------------------------------------------
+
+def is_scene_key(name):
+    """Whether a flag or sweep key names a scene value (not a solver setting)."""
+    return (name in SHORTHANDS or name in ("symmetric", "contact_zone")
+            or name.split(".")[0] in _TABLES or bool(_PATCH_KEY.match(name)))
+
+
+def _set(scene, key, value):
+    """The scene with one dotted key set (without validation)."""
+    if key in ("symmetric", "contact_zone"):
+        return _unchecked(scene, **{key: value})
+    match = _PATCH_KEY.match(key)
+    if match:
+        number, name = int(match.group(1)), match.group(2)
+        if not 1 <= number <= len(scene.coatings):
+            raise ParameterError(f"{key}: the scene has {len(scene.coatings)} coating "
+                                 "patch(es), counted from 1", key)
+        _field_exists(Coating, name, key)
+        coatings = list(scene.coatings)
+        coatings[number - 1] = _unchecked_part(coatings[number - 1], **{name: value})
+        return _unchecked(scene, coatings=tuple(coatings))
+    table, _, name = key.partition(".")
+    if table not in _TABLES or not name:
+        raise ParameterError(f"unknown scene key {key!r}", key)
+    _field_exists(_TABLES[table], name, key)
+    if table == "coating":
+        if not scene.coatings:
+            raise ParameterError(f"{key}: the scene has no coating", key)
+        return _unchecked(scene, coatings=tuple(_unchecked_part(c, **{name: value})
+                                                for c in scene.coatings))
+    if table == "load":   # one load replaces the other
+        return _unchecked(scene, load=_unchecked_part(Load(), **{name: value}))
+    return _unchecked(scene, **{table: _unchecked_part(getattr(scene, table), **{name: value})})
+
+
+def _field_exists(cls, name, key):
+    if name not in {f.name for f in fields(cls)}:
+        raise ParameterError(f"unknown scene key {key!r} (allowed: "
+                             f"{', '.join(f.name for f in fields(cls))})", key)
+
+
+def _unchecked_part(part, **changes):
+    """A copy of a frozen part with changes, its checks left to the Scene."""
+    copy = object.__new__(type(part))
+    for f in fields(part):
+        object.__setattr__(copy, f.name, changes.get(f.name, getattr(part, f.name)))
+    return copy
+
+
+def _unchecked(scene, **changes):
+    return _unchecked_part(scene, **changes)
+
+
+def _shorthand_changes(name, value, scene):
+    """Dotted keys and values a shorthand stands for."""
+    if name == "chi":
+        if not (isinstance(value, (int, float)) and value > 0):
+            raise ParameterError(f"chi = {value!r} must be a positive number", "chi")
+        return [("indenter.radius", 1.0 / (2.0 * value)), ("indenter.profile", "parabola")]
+    if name == "coating_length" and len(scene.coatings) != 1:
+        raise ParameterError(f"coating_length sets the end of the one coating; the scene "
+                             f"has {len(scene.coatings)}", "coating_length")
+    return [(key, value) for key in SHORTHANDS[name][1]]
+
+
+def apply_overrides(scene, overrides):
+    """The scene with every override applied, validated once; an error names the
+    override that set the offending key."""
+    set_by, changed = {}, scene
+    for name, value in overrides.items():
+        if value is None:
+            continue
+        changes = (_shorthand_changes(name, value, changed) if name in SHORTHANDS
+                   else [(name, value)])
+        for key, new in changes:
+            changed = _set(changed, key, new)
+            set_by[key] = name
+    if changed is scene:
+        return scene
+    try:
+        return Scene(indenter=_revalidate(changed.indenter), base=_revalidate(changed.base),
+                     coatings=tuple(_revalidate(c) for c in changed.coatings),
+                     load=_revalidate(changed.load), symmetric=changed.symmetric,
+                     contact_zone=changed.contact_zone)
+    except ParameterError as error:
+        raise _named(error, set_by) from None
+    except TypeError as error:
+        raise ParameterError(str(error)) from None
+
+
+def _revalidate(part):
+    return type(part)(**{f.name: getattr(part, f.name) for f in fields(part)})
+
+
+def _named(error, set_by):
+    """The error, saying which override set its key (coating[1].E -> coating.E -> E2)."""
+    key = error.key or ""
+    general = re.sub(r"^coating\[\d+\]\.", "coating.", key)
+    source = set_by.get(key) or set_by.get(general)
+    if source is None or source == key:
+        return error
+    return ParameterError(f"{error} (set by {source})", key)
+
+
+def shorthand_values(scene):
+    """The paper's parameters of a scene with one patch on a block (for tables and
+    figures), else {}."""
+    if len(scene.coatings) != 1 or scene.base.shape != "block":
+        return {}
+    coating, indenter, base = scene.coatings[0], scene.indenter, scene.base
+    values = {"model": coating.model, "h2": coating.thickness, "E1": indenter.E,
+              "E2": coating.E, "E3": base.E, "nu1": indenter.nu, "nu2": coating.nu,
+              "nu3": base.nu, "coating_length": coating.end - coating.start,
+              "length": base.width, "height": base.height,
+              "shear_factor": coating.shear_factor, "stamp": scene.load.displacement}
+    if indenter.profile == "parabola" and not math.isinf(indenter.radius):
+        values["chi"] = 1.0 / (2.0 * indenter.radius)
+    return values
+
+
+def scene_and_settings(path=None, overrides=None, settings=None):
+    """The scene of a file (default: the paper's) with overrides, and the settings: the
+    file's [settings] under the given values. Errors name the file and the key."""
+    scene, file_settings = load_scene(path or PAPER_SCENE_FILE)
+    scene = apply_overrides(scene, overrides or {})
+    values = {**file_settings, **{k: v for k, v in (settings or {}).items() if v is not None}}
+    try:
+        return scene, Settings(**values)
+    except ParameterError as error:
+        if path and error.key in file_settings and error.key not in (settings or {}):
+            raise ParameterError(f"{path}: settings.{error}", error.key) from None
+        raise
