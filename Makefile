@@ -4,13 +4,14 @@
 #   make test    run the tests
 #   make bench   speed against accuracy (results/bench.csv, results/speed_accuracy.png)
 #   make stability  a sweep of 102 runs and maps of where each method converges
+#   make discrete   a cylinder over a coating in patches, both models (results/discrete.png)
 # Both install what they need first (FreeFEM from Debian, a pinned Python venv).
 
 PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test clean figures fig3 fig4 fig5 bench stability
+.PHONY: setup run test clean figures fig3 fig4 fig5 bench stability discrete
 
 # ---- The paper's figures: one run folder per scene, shared between figures ----------
 # results/runs/MODEL-h2_H-E2_E/summary.json is a run of the coating model MODEL with
@@ -39,6 +40,14 @@ results/runs/%/summary.json: | setup
 	  --model $(call scene_word,$@,1) \
 	  --h2 $(patsubst h2_%,%,$(call scene_word,$@,2)) \
 	  --E2 $(patsubst E2_%,%,$(call scene_word,$@,3))
+
+# ---- A discrete coating (orchestrate/scenes/discrete.toml), both coating models ------
+DISCRETE_RUNS := $(foreach m,shell elastic,results/discrete/$(m)/summary.json)
+discrete: results/discrete.png
+results/discrete.png: $(DISCRETE_RUNS) | setup
+	$(PYTHON) -m orchestrate.discrete_figure $(DISCRETE_RUNS)
+results/discrete/%/summary.json: orchestrate/scenes/discrete.toml | setup
+	$(PYTHON) -m orchestrate solve --quiet --scene $< --model $* --out $(@D)
 
 setup: .venv/.installed .freefem-installed
 

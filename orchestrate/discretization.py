@@ -68,6 +68,7 @@ class Interface:
     weight: np.ndarray         # Simpson's weights of the face's arc length
     gap: np.ndarray            # initial gap along the normal (zero on a bond)
     sides: tuple               # (Side A, Side B)
+    mismatch: np.ndarray = None  # contact: angle (rad) between the paired faces' normals
 
     @property
     def size(self):
@@ -162,7 +163,6 @@ class Problem:
     subdomains: dict           # name -> Subdomain, in a fixed order
     interfaces: tuple
     lowest: float              # height of the indenter's lowest point at first touch
-    normal_mismatch: float     # largest angle (rad) between paired normals
 
     def sides_of(self, name):
         """(interface index, side index) of every side of a subdomain, in interface order."""
@@ -284,7 +284,7 @@ def discretize(scene, settings):
         lowest = lowest_over(partners)
     indenter_face = IndenterFace(scene.indenter, lowest)
 
-    contacts, mismatch = [], 0.0
+    contacts = []
     for nodes, offset, name, number in partners:
         s, weight = simpson(nodes, face.stretch(offset))
         position = face.point(s, offset)
@@ -303,11 +303,10 @@ def discretize(scene, settings):
         else:
             partner_side = Side(partner, chord_points(position), (normal.copy(),))
         indenter_side = Side("indenter", indenter_place, (-normal,))
-        contacts.append(Interface(name, "contact", s, position, normal, tangent, weight,
-                                  np.maximum(gap, 0.0), (indenter_side, partner_side)))
         face_normal = indenter_face.normal(touching[:, 0])
-        cosine = np.clip(-np.sum(face_normal * normal, axis=1), -1.0, 1.0)
-        mismatch = max(mismatch, float(np.max(np.arccos(cosine))))
+        angle = np.arccos(np.clip(-np.sum(face_normal * normal, axis=1), -1.0, 1.0))
+        contacts.append(Interface(name, "contact", s, position, normal, tangent, weight,
+                                  np.maximum(gap, 0.0), (indenter_side, partner_side), angle))
 
     bonds, subdomains = [], {}
     for number, coating, nodes in sorted(patches, key=lambda item: item[0]):
@@ -346,7 +345,7 @@ def discretize(scene, settings):
     ordered.update((name, subdomains[name]) for name in sorted(
         subdomains, key=lambda n: int(n[len("coating"):])))
     ordered["base"] = Subdomain("base", "body", scene.base.E, scene.base.nu, base_plan)
-    return Problem(scene, settings, ordered, interfaces, lowest, mismatch)
+    return Problem(scene, settings, ordered, interfaces, lowest)
 
 
 def _shell_coefficients(n, c_v, c_w, c_gamma):

@@ -193,7 +193,10 @@ def _write_results(problem, loop, out_dir):
         "descent": loop.descent,
         "total_force": (2.0 if scene.symmetric else 1.0) * contact_force,
         "interfaces": per_interface,
-        "normal_mismatch_deg": math.degrees(problem.normal_mismatch),
+        # the faces' normals over the contact: the pairing assumes them opposite
+        "normal_mismatch_deg": math.degrees(max(
+            (float(np.max(problem.interfaces[i].mismatch[stresses[i] < 0]))
+             for i in layout.contact_indices if np.any(stresses[i] < 0)), default=0.0)),
     }
 
 

@@ -1,0 +1,150 @@
+"""Scene files: every example loads and is valid; a bad scene file is refused before any
+work, naming the file, the key and the allowed range; flags override the file."""
+
+import subprocess
+import sys
+
+import pytest
+
+from orchestrate.scene import ParameterError
+from orchestrate.scene_file import SCENES_DIR, load_scene, paper_scene, scene_and_settings
+from tests.conftest import PROJECT_DIR
+
+BASE = """
+symmetric = true
+[indenter]
+radius = 20.0
+width = 4.0
+height = 8.0
+[base]
+shape = "block"
+width = 4.0
+height = 8.0
+[[coating]]
+start = 0.0
+end = 1.0
+thickness = 0.125
+[load]
+force = 0.02
+"""
+
+ROLLER = """
+[indenter]
+width = 4.0
+height = 8.0
+[base]
+shape = "roller"
+radius = 16.0
+[[coating]]
+start = 0.0
+end = 3.0
+thickness = 0.125
+[load]
+displacement = 1e-3
+"""
+
+
+def _edit(text, old, new):
+    assert old in text
+    return text.replace(old, new)
+
+
+# (name, file text, words the message must hold: the key and the allowed range)
+BAD = [
+    ("unknown key", _edit(BASE, "width = 4.0\nheight = 8.0\n[base]", "width = 4.0\nheight = 8.0\n"
+                          "colour = 1\n[base]"), ["indenter.colour", "allowed in indenter"]),
+    ("unknown table", BASE + "[stamp]\nE = 1\n", ["unknown key stamp", "allowed"]),
+    ("overlapping patches", BASE + "[[coating]]\nstart = 0.5\nend = 1.5\nthickness = 0.1\n",
+     ["coating[2].start = 0.5", "overlaps coating[1] [0.0, 1.0]"]),
+    ("a patch outside the face", _edit(BASE, "end = 1.0", "end = 5.0"),
+     ["coating[1]", "end = 0.0, 5.0", "[0, 4]"]),
+    ("a patch left of the axis of a half model", _edit(BASE, "start = 0.0", "start = -1.0"),
+     ["coating[1].start", "symmetry axis x1 = 0"]),
+    ("a thickness above the base's height", _edit(BASE, "thickness = 0.125", "thickness = 9.0"),
+     ["coating[1].thickness = 9.0", "below base.height = 8.0"]),
+    ("no load", _edit(BASE, "[load]\nforce = 0.02", "[load]"),
+     ["load must give exactly one of displacement or force", "none"]),
+    ("no load table", _edit(BASE, "[load]\nforce = 0.02", ""), ["[load] is missing"]),
+    ("two loads", _edit(BASE, "force = 0.02", "force = 0.02\ndisplacement = 1e-3"),
+     ["exactly one of displacement or force", "'displacement', 'force'"]),
+    ("a negative force", _edit(BASE, "force = 0.02", "force = -0.02"),
+     ["load.force = -0.02", "non-negative"]),
+    ("a roller too small for its patches", _edit(ROLLER, "radius = 16.0", "radius = 2.5"),
+     ["coating[1]", "end = 0.0, 3.0", "|x1| < radius = 2.5"]),
+    ("a negative roller radius", _edit(ROLLER, "radius = 16.0", "radius = -16.0"),
+     ["base.radius = -16.0", "positive"]),
+    ("a negative indenter radius", _edit(BASE, "radius = 20.0", "radius = -20.0"),
+     ["indenter.radius = -20.0", "positive"]),
+    ("a circle narrower than the indenter", _edit(BASE, "radius = 20.0", "radius = 3.0"),
+     ["indenter.radius = 3.0", "must exceed indenter.width = 4.0"]),
+    ("a roller without its radius", _edit(ROLLER, "radius = 16.0", ""),
+     ["base.radius is missing"]),
+    ("a block with a radius", _edit(BASE, "shape = \"block\"", "shape = \"block\"\nradius = 3.0"),
+     ["base.radius = 3.0", "is for a roller"]),
+    ("a bad profile", _edit(BASE, "radius = 20.0", "radius = 20.0\nprofile = \"ellipse\""),
+     ["indenter.profile = 'ellipse'", "('circle', 'parabola')"]),
+    ("a bad model", _edit(BASE, "thickness = 0.125", "thickness = 0.125\nmodel = \"plate\""),
+     ["coating[1].model = 'plate'", "('shell', 'elastic')"]),
+    ("a Poisson ratio of 0.5", _edit(BASE, "thickness = 0.125", "thickness = 0.125\nnu = 0.5"),
+     ["coating[1].nu = 0.5", "(-1, 0.5)"]),
+    ("a string for a modulus", _edit(BASE, "thickness = 0.125", "thickness = 0.125\nE = \"stiff\""),
+     ["coating[1].E = 'stiff'", "positive number"]),
+    ("a contact zone inside a patch", "contact_zone = [0.0, 0.5]\n" + BASE,
+     ["contact_zone = [0.0, 0.5]", "ends inside coating[1]"]),
+    ("a bad setting", BASE + "[settings]\nrho = 2.0\n", ["settings.rho = 2.0", "(0, 1]"]),
+    ("an unknown setting", BASE + "[settings]\nspeed = 2.0\n", ["settings.speed", "allowed"]),
+    ("not TOML", "radius = = 2", ["not a valid TOML file"]),
+]
+
+
+@pytest.mark.parametrize("text, words", [(text, words) for _, text, words in BAD],
+                         ids=[name for name, _, _ in BAD])
+def test_a_bad_scene_file_is_refused_naming_file_key_and_range(text, words, tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    with pytest.raises(ParameterError) as error:
+        scene_and_settings(path)
+    message = str(error.value)
+    assert message.startswith(f"{path}: ")
+    for word in words:
+        assert word in message, (word, message)
+
+
+@pytest.mark.parametrize("name", ["overlapping patches", "a roller too small for its patches"])
+def test_the_command_line_refuses_a_bad_scene_before_any_work(name, tmp_path):
+    text, words = next((text, words) for n, text, words in BAD if n == name)
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    out = tmp_path / "run"
+    result = subprocess.run([sys.executable, "-m", "orchestrate", "solve", "--scene", str(path),
+                             "--out", str(out)], cwd=PROJECT_DIR, capture_output=True,
+                            text=True, timeout=60)
+    assert result.returncode == 2
+    assert str(path) in result.stderr and words[0] in result.stderr
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("path", sorted(SCENES_DIR.glob("*.toml")), ids=lambda p: p.name)
+def test_every_example_scene_loads(path):
+    scene, settings = load_scene(path)
+    assert scene.load.kind in ("force", "displacement")
+
+
+def test_flags_override_the_file():
+    scene, settings = scene_and_settings(SCENES_DIR / "discrete.toml",
+                                         {"h2": 0.25, "coating[2].E": 2.0, "model": "elastic"},
+                                         {"eps_u": 1e-8})
+    assert [c.thickness for c in scene.coatings] == [0.25] * 3
+    assert [c.E for c in scene.coatings] == [5.0, 2.0, 5.0]
+    assert {c.model for c in scene.coatings} == {"elastic"}
+    assert settings.eps_u == 1e-8
+
+
+def test_the_paper_scene_is_the_papers():
+    """METHOD.md: Omega1 = [0, 4] x [h + h2, 2h + h2], Omega3 = [0, 4] x [0, 8], coating on
+    [0, 2], gap chi x1^2 with chi = 1e-3, Delta = 2.778999 chi."""
+    scene = paper_scene()
+    assert scene.indenter.sag(2.0) == pytest.approx(1e-3 * 2.0 ** 2, rel=1e-15)
+    assert (scene.base.width, scene.base.height) == (4.0, 8.0)
+    assert (scene.coatings[0].start, scene.coatings[0].end) == (0.0, 2.0)
+    assert scene.load.displacement == 2.778999e-3
