@@ -84,66 +84,71 @@ def _on_common_points(a, b):
     """(s, a, b) on common points: as they are when both have the same points, else the
     curve with more points interpolated linearly in s onto the points of the other."""
     (sa, ya), (sb, yb) = a, b
-    if len(sa) == len(sb) and np.allclose(sa, sb, rtol=0, atol=1e-9):
+    if _same_points(sa, sb):
         return sb, ya, yb
     if len(sa) > len(sb):
         return sb, np.interp(sb, sa, ya), yb
     return sa, ya, np.interp(sa, sb, yb)
 
 
-def distance(a, b, stretches):
-    """||a - b|| / ||b|| over every interface of b (dicts of (s, values)), with the
-    Simpson weights of the common points times each interface's ``stretches`` (the
-    length of its face per unit s)."""
+def _same_points(sa, sb):
+    return len(sa) == len(sb) and np.allclose(sa, sb, rtol=0, atol=1e-9)
+
+
+def distance(a, b, stretches, upto=math.inf):
+    """||a - b|| / ||b|| over every interface of b (dicts of (s, values)) where s < upto,
+    with the Simpson weights of the common points times each interface's ``stretches``
+    (the length of its face per unit s)."""
     numerator = denominator = 0.0
     for name in b:
         s, ya, yb = _on_common_points(a[name], b[name])
-        weight = _weights(s, stretches.get(name, 1.0))
+        weight = _weights(s, stretches.get(name, 1.0)) * (s < upto)
         numerator += float(np.dot(weight, (ya - yb) ** 2))
         denominator += float(np.dot(weight, yb ** 2))
     return math.sqrt(numerator / denominator)
 
 
-def interpolation_floor(a, b, stretches):
-    """The distance interpolation alone makes: the curve with more points against its own
-    linear interpolant through the other's points (0 when the points coincide)."""
-    worst = 0.0
-    fine, coarse = {}, {}
-    for name in b:
-        (sa, ya), (sb, yb) = a[name], b[name]
-        if len(sa) == len(sb) and np.allclose(sa, sb, rtol=0, atol=1e-9):
-            fine[name] = coarse[name] = (sb, yb)
-            continue
-        (sf, yf), (sc, _) = ((sa, ya), (sb, yb)) if len(sa) > len(sb) else ((sb, yb), (sa, ya))
-        fine[name] = (sf, yf)
-        coarse[name] = (sc, np.interp(sc, sf, yf))
+def interpolation_floor(a, b, stretches, upto=math.inf):
+    """What interpolation alone adds to ``distance``: on every interface whose points
+    differ, the curve with more points against its linear interpolant through the
+    other's points (0 when all points coincide)."""
     numerator = denominator = 0.0
     for name in b:
-        (sf, yf), (sc, yc) = fine[name], coarse[name]
-        if len(sf) == len(sc) and np.allclose(sf, sc, rtol=0, atol=1e-9):
+        (sa, ya), (sb, yb) = a[name], b[name]
+        if _same_points(sa, sb):
             continue
-        weight = _weights(sf, stretches.get(name, 1.0))
-        numerator += float(np.dot(weight, (np.interp(sf, sc, yc) - yf) ** 2))
+        (sf, yf), sc = ((sa, ya), sb) if len(sa) > len(sb) else ((sb, yb), sa)
+        back = np.interp(sf, sc, np.interp(sc, sf, yf))
+        weight = _weights(sf, stretches.get(name, 1.0)) * (sf < upto)
+        numerator += float(np.dot(weight, (back - yf) ** 2))
         denominator += float(np.dot(weight, yf ** 2))
-    if denominator > 0:
-        worst = math.sqrt(numerator / denominator)
-    return worst
+    return math.sqrt(numerator / denominator) if denominator > 0 else 0.0
 
 
-def compare(scene, shell_dir, elastic_dir):
-    """The differences between a finished shell run and a 2D run of one scene."""
+CORE = 0.6     # the core of the contact: s < CORE times the smaller contact half-width
+
+
+def compare(scene, shell_dir, elastic_dir, half_width):
+    """The distances between a finished shell run and a 2D run of one scene, over the
+    whole faces and over the core of the contact, s < CORE * half_width (away from its
+    edge, where the pressure falls to zero between two interface points)."""
     R = scene.base.radius
     stretches = {f"contact-coating{n}": (R + c.thickness) / R
                  for n, c in enumerate(scene.coatings, start=1)}
     contact = [curves(d, "contact.csv") for d in (shell_dir, elastic_dir)]
     bond = [curves(d, "interface.csv") for d in (shell_dir, elastic_dir)]
+    core = CORE * half_width
     return {
         "contact_l2": distance(*contact, stretches),
         "bond_l2": distance(*bond, {}),
+        "contact_l2_core": distance(*contact, stretches, core),
+        "bond_l2_core": distance(*bond, {}, core),
         "interp_floor": max(interpolation_floor(*contact, stretches),
                             interpolation_floor(*bond, {})),
-        "points_shell": len(bond[0]["bond-coating1"][0]),
-        "points_2d": len(bond[1]["bond-coating1"][0]),
+        "interp_floor_core": max(interpolation_floor(*contact, stretches, core),
+                                 interpolation_floor(*bond, {}, core)),
+        "bond_points_shell": sum(len(s) for s, _ in bond[0].values()),
+        "bond_points_2d": sum(len(s) for s, _ in bond[1].values()),
     }
 
 
@@ -164,7 +169,8 @@ def study_row(h2, E2, settings=None, keep=None):
             row["peak_shell"] = shell["peak_contact_stress"]
             row["peak_2d"] = elastic["peak_contact_stress"]
             row["peak_diff"] = shell["peak_contact_stress"] / elastic["peak_contact_stress"] - 1.0
-            row.update(compare(scene, folders["shell"], folders["elastic"]))
+            row.update(compare(scene, folders["shell"], folders["elastic"],
+                               min(shell["contact_half_width"], elastic["contact_half_width"])))
             row["bond_peak_shell"] = shell["peak_interface_stress"]
             row["bond_peak_2d"] = elastic["peak_interface_stress"]
             row["half_width_shell"] = shell["contact_half_width"]
@@ -187,7 +193,7 @@ def rates(table):
     """log2 of the ratio of each difference at the previous (thicker) h2 to this one,
     per E2 (1: the difference halves with h2)."""
     table = table.sort_values(["E2", "h2"], ascending=[True, False]).reset_index(drop=True)
-    for key in ("peak_diff", "contact_l2", "bond_l2"):
+    for key in ("peak_diff", "contact_l2", "bond_l2", "contact_l2_core", "bond_l2_core"):
         values = table[key].abs() if key in table else pd.Series(np.nan, index=table.index)
         previous = values.groupby(table.E2).shift(1)
         table[f"{key}_rate"] = np.log2(previous / values)
@@ -195,7 +201,9 @@ def rates(table):
 
 
 COLUMNS = ["E2", "R_over_h2", "h2", "peak_2d", "peak_diff", "peak_diff_rate", "contact_l2",
-           "contact_l2_rate", "bond_l2", "bond_l2_rate", "interp_floor", "half_width_shell",
+           "contact_l2_rate", "bond_l2", "bond_l2_rate", "contact_l2_core",
+           "contact_l2_core_rate", "bond_l2_core", "bond_l2_core_rate", "interp_floor",
+           "interp_floor_core", "half_width_shell",
            "half_width_2d", "time_shell", "time_2d", "dofs_shell", "dofs_2d",
            "coating_dofs_shell", "coating_dofs_2d", "iterations_shell", "iterations_2d"]
 
