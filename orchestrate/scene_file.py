@@ -127,9 +127,13 @@ def paper_scene(**shorthands):
 # ---- overrides -------------------------------------------------------------------------
 
 def is_scene_key(name):
-    """Whether a flag or sweep key names a scene value (not a solver setting)."""
-    return (name in SHORTHANDS or name in ("symmetric", "contact_zone")
-            or name.split(".")[0] in _TABLES or bool(_PATCH_KEY.match(name)))
+    """Whether a flag or sweep key names a scene value (not a solver setting); a dotted
+    key must name a field of its table."""
+    if name in SHORTHANDS or name in ("symmetric", "contact_zone"):
+        return True
+    match = _PATCH_KEY.match(name)
+    table, _, field = ("coating", None, match.group(2)) if match else name.partition(".")
+    return table in _TABLES and field in {f.name for f in fields(_TABLES[table])}
 
 
 def _set(scene, key, value):

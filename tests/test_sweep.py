@@ -144,3 +144,25 @@ def test_points_keep_their_names_when_a_sweep_grows(tmp_path):
     large.write_text('[grid]\nh2 = [0.25, 0.5]\nE2 = [1.0, 5.0]\n')
     (_, first), (_, second) = load_sweep(small), load_sweep(large)
     assert {point_id(p) for p in first} <= {point_id(p) for p in second}
+
+
+def test_a_sweep_takes_a_scene_file_and_dotted_keys(tmp_path):
+    from orchestrate.sweep import point_scene
+    path = tmp_path / "scenes.toml"
+    path.write_text('[fixed]\nscene = "discrete.toml"\n"load.force" = 0.01\n'
+                    '[grid]\n"coating[2].E" = [2.0, 5.0]\nh2 = [0.25]\n')
+    (tmp_path / "discrete.toml").write_text(
+        (PROJECT_DIR / "orchestrate" / "scenes" / "discrete.toml").read_text())
+    _, points = load_sweep(path)
+    scenes = [point_scene(p, tmp_path)[0] for p in points]
+    assert [s.coatings[1].E for s in scenes] == [2.0, 5.0]
+    assert all(s.load.force == 0.01 and s.load.displacement is None for s in scenes)
+    assert all(c.thickness == 0.25 for s in scenes for c in s.coatings)
+
+
+def test_a_bad_dotted_key_is_refused_before_any_run(tmp_path):
+    from orchestrate.scene import ParameterError
+    path = tmp_path / "bad.toml"
+    path.write_text('[grid]\n"indenter.colour" = [1.0]\n')
+    with pytest.raises(ParameterError, match="indenter.colour"):
+        load_sweep(path)
