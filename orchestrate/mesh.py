@@ -21,7 +21,7 @@ import gmsh
 import meshio
 import numpy as np
 
-from .discretization import GROWTH
+from .body_plans import GROWTH
 from .labels import LABELS
 
 
@@ -241,7 +241,7 @@ def _close_outline(outline, plan):
         # group order as the paper's meshes were built: face, far side, symmetry, free
         _reorder(outline.labels, far_label, side)
         return [face_curves + right + far + left]
-    radius, bore = plan.radius, plan.bore
+    bore = plan.bore
     if plan.half or plan.mirror:
         down = outline.line(last, (0.0, -bore), "Symmetry")
         shaft = outline.arc(np.array([0.0, bore]), np.array([0.0, -bore]), "Clamped")

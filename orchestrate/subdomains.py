@@ -11,7 +11,7 @@ import time
 
 from .exchange import parse_reply, reply_count, request_arrays, write_sides
 from .mesh import body_mesh, coating_mesh, write_medit
-from .discretization import BodyPlan
+from .body_plans import BodyPlan
 from .worker import CMD_OUTPUT, CMD_SOLVE, Worker
 
 
