@@ -10,6 +10,11 @@ from typing import Optional
 
 import numpy as np
 
+GROWTH = 0.115     # mesh size grows by GROWTH per unit distance from the face (level 1),
+MAX_SIZE = 0.5     # up to MAX_SIZE (or a sixteenth of a larger body): the paper's ~1370
+                   # triangles per body
+
+
 @dataclass(frozen=True)
 class FacePiece:
     """A piece of a body's face for the mesher: an interface piece is exactly its
@@ -46,12 +51,6 @@ class BodyPlan:
     bore: float = 0.0          # roller
     indenter: Optional[object] = None   # the Indenter, for a profile curve
     lowest: float = 0.0        # the indenter's lowest point
-
-
-
-GROWTH = 0.115     # mesh size grows by GROWTH per unit distance from the face (level 1),
-MAX_SIZE = 0.5     # up to MAX_SIZE (or a sixteenth of a larger body): the paper's ~1370
-                   # triangles per body
 
 
 def _interface_piece(label, vertices):
