@@ -18,7 +18,7 @@ patches counted from 1) and the allowed range. Scene and settings are written ne
 every result, so that any result can be reproduced.
 """
 
-from dataclasses import asdict, dataclass, field, fields, replace
+from dataclasses import asdict, dataclass, fields, replace
 import math
 from typing import Optional
 
@@ -223,10 +223,10 @@ class Scene:
     bare base (default: wherever its face is over the base); a run whose contact
     reaches an end of it that is not the end of a face fails."""
 
-    indenter: Indenter = field(default_factory=Indenter)
-    base: Base = field(default_factory=Base)
-    coatings: tuple = (Coating(),)
-    load: Load = field(default_factory=lambda: Load(displacement=2.778999e-3))
+    indenter: Indenter
+    base: Base
+    load: Load
+    coatings: tuple = ()
     symmetric: bool = True
     contact_zone: Optional[tuple] = None
 

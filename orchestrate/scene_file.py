@@ -139,7 +139,7 @@ def is_scene_key(name):
 def _set(scene, key, value):
     """The scene with one dotted key set (without validation)."""
     if key in ("symmetric", "contact_zone"):
-        return _unchecked(scene, **{key: value})
+        return _copy(scene, **{key: value})
     match = _PATCH_KEY.match(key)
     if match:
         number, name = int(match.group(1)), match.group(2)
@@ -148,8 +148,8 @@ def _set(scene, key, value):
                                  "patch(es), counted from 1", key)
         _field_exists(Coating, name, key)
         coatings = list(scene.coatings)
-        coatings[number - 1] = _unchecked_part(coatings[number - 1], **{name: value})
-        return _unchecked(scene, coatings=tuple(coatings))
+        coatings[number - 1] = _copy(coatings[number - 1], **{name: value})
+        return _copy(scene, coatings=tuple(coatings))
     table, _, name = key.partition(".")
     if table not in _TABLES or not name:
         raise ParameterError(f"unknown scene key {key!r}", key)
@@ -157,11 +157,11 @@ def _set(scene, key, value):
     if table == "coating":
         if not scene.coatings:
             raise ParameterError(f"{key}: the scene has no coating", key)
-        return _unchecked(scene, coatings=tuple(_unchecked_part(c, **{name: value})
+        return _copy(scene, coatings=tuple(_copy(c, **{name: value})
                                                 for c in scene.coatings))
     if table == "load":   # one load replaces the other
-        return _unchecked(scene, load=_unchecked_part(Load(), **{name: value}))
-    return _unchecked(scene, **{table: _unchecked_part(getattr(scene, table), **{name: value})})
+        return _copy(scene, load=_copy(Load(), **{name: value}))
+    return _copy(scene, **{table: _copy(getattr(scene, table), **{name: value})})
 
 
 def _field_exists(cls, name, key):
@@ -170,16 +170,19 @@ def _field_exists(cls, name, key):
                              f"{', '.join(f.name for f in fields(cls))})", key)
 
 
-def _unchecked_part(part, **changes):
-    """A copy of a frozen part with changes, its checks left to the Scene."""
+def _copy(part, **changes):
+    """A copy of a frozen scene or part with changes, unchecked: the scene is checked
+    once every override is in (one override alone may be inconsistent, e.g. a thickness
+    before the height that makes room for it)."""
     copy = object.__new__(type(part))
     for f in fields(part):
         object.__setattr__(copy, f.name, changes.get(f.name, getattr(part, f.name)))
     return copy
 
 
-def _unchecked(scene, **changes):
-    return _unchecked_part(scene, **changes)
+def _checked(part):
+    """A part rebuilt, its checks run."""
+    return type(part)(**{f.name: getattr(part, f.name) for f in fields(part)})
 
 
 def _shorthand_changes(name, value, scene):
@@ -209,18 +212,14 @@ def apply_overrides(scene, overrides):
     if changed is scene:
         return scene
     try:
-        return Scene(indenter=_revalidate(changed.indenter), base=_revalidate(changed.base),
-                     coatings=tuple(_revalidate(c) for c in changed.coatings),
-                     load=_revalidate(changed.load), symmetric=changed.symmetric,
+        return Scene(indenter=_checked(changed.indenter), base=_checked(changed.base),
+                     coatings=tuple(_checked(c) for c in changed.coatings),
+                     load=_checked(changed.load), symmetric=changed.symmetric,
                      contact_zone=changed.contact_zone)
     except ParameterError as error:
         raise _named(error, set_by) from None
     except TypeError as error:
         raise ParameterError(str(error)) from None
-
-
-def _revalidate(part):
-    return type(part)(**{f.name: getattr(part, f.name) for f in fields(part)})
 
 
 def _named(error, set_by):
@@ -258,6 +257,6 @@ def scene_and_settings(path=None, overrides=None, settings=None):
     try:
         return scene, Settings(**values)
     except ParameterError as error:
-        if path and error.key in file_settings and error.key not in (settings or {}):
+        if path and error.key in file_settings and (settings or {}).get(error.key) is None:
             raise ParameterError(f"{path}: settings.{error}", error.key) from None
         raise
