@@ -9,6 +9,8 @@ problem ill-conditioned are dropped (QR filter: a column whose R diagonal is bel
 history when the map itself changes (a new contact set).
 """
 
+import math
+
 import numpy as np
 
 
@@ -22,6 +24,24 @@ class Anderson:
 
     def reset(self):
         self._residuals, self._images = [], []
+
+    def amplification(self):
+        """max over the history of ||dx|| / ||dr||, the step between two iterates over
+        the change of their residuals: for an affine map with Jacobian J, dr = (J - I) dx,
+        so this bounds ||(I - J)^-1|| from below, the factor by which a residual
+        underestimates the distance to the fixed point (1/(1 - q) for a contraction by q)."""
+        if len(self._residuals) < 2:
+            return math.inf
+        residuals, images = np.array(self._residuals), np.array(self._images)
+        iterates = images * self.scale - residuals            # scaled x = g - r
+        d_r, d_x = np.diff(residuals, axis=0), np.diff(iterates, axis=0)
+        ratios = np.linalg.norm(d_x, axis=1) / np.maximum(np.linalg.norm(d_r, axis=1), 1e-300)
+        return float(np.max(ratios))
+
+    @property
+    def secants(self):
+        """Differences of residuals in the history: what the secant model is made of."""
+        return max(0, len(self._residuals) - 1)
 
     def step(self, x, g):
         """Next iterate from the current iterate x and its image g = G(x)."""

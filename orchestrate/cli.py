@@ -3,9 +3,11 @@
 Without --scene, the paper's scene (orchestrate/scenes/paper.toml). Flags override
 the file: the paper's parameters (--h2, --E2, --model, ...; orchestrate/scene_file.py's
 SHORTHANDS), any scene key with --set KEY=VALUE, and every solver setting. Lengths are
-in units of b and moduli in units of E. Exit status: 0 converged, 1 the loop diverged
-or stagnated (the report is in DIR/summary.json), 2 bad input or a missing FreeFEM,
-3 a worker failed.
+in units of b and moduli in units of E. Exit statuses (orchestrate/errors.py): 0
+converged, 1 not converged (the report is in DIR/summary.json), 2 refused before any
+work (bad input, a missing FreeFEM, an output folder that is not free), 3 failed (a
+worker, a file, the machine), 4 an internal error, 130 interrupted (Ctrl-C), 143
+terminated (SIGTERM).
 """
 
 import argparse
@@ -13,11 +15,14 @@ from dataclasses import fields
 import signal
 import sys
 import tomllib
+import traceback
 
+from .errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT_INTERRUPTED,
+                     EXIT_NOT_CONVERGED,
+                     EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure)
 from .freefem import FreeFemMissing
-from .scene import METHODS, MODELS, WORKERS, ParameterError, Settings
+from .scene import METHODS, MODELS, WORKERS, Settings
 from .scene_file import SHORTHANDS, scene_and_settings
-from .worker import WorkerError
 
 _SETTINGS_HELP = {
     "theta": "penalty parameter (b/E)",
@@ -27,6 +32,9 @@ _SETTINGS_HELP = {
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
     "L divides every mesh size by L", "element_size": "interface element length at level 1 (b)",
     "workers": "persistent FreeFEM workers, or a fresh process per solve (the naive baseline)",
+    "worker_timeout": "seconds a worker may take to answer before the run fails",
+    "memory_limit": "GiB the run may take (estimated before any work; default: 3/4 of the "
+                    "memory free)",
 }
 _CHOICES = {"model": MODELS, "method": METHODS, "workers": WORKERS}
 
@@ -81,7 +89,9 @@ def build_parser():
         "solve", help="solve one scene and write its results into a folder",
         description="Solve one scene. Lengths in b, moduli in E. Writes contact.csv, "
                     "interface.csv, history.csv, summary.json and VTU fields into --out.")
-    solve.add_argument("--out", required=True, help="output folder")
+    solve.add_argument("--out", required=True, help="output folder (made whole at the end)")
+    solve.add_argument("--overwrite", action="store_true",
+                       help="replace an earlier run's output folder whole")
     solve.add_argument("--quiet", action="store_true", help="no progress lines")
     _add_scene_options(solve)
     _add_settings_options(solve)
@@ -97,17 +107,28 @@ def build_parser():
     sweep.add_argument("--jobs", type=int, help="runs at once (default: one per core)")
     sweep.add_argument("--scheduler", help="Dask scheduler address tcp://HOST:PORT (a "
                        "cluster sharing the results folder); default: a local Dask cluster")
+    sweep.add_argument("--retry-failed", action="store_true",
+                       help="run again the runs that did not converge (those that failed "
+                            "outside their numbers, e.g. a killed worker, always are)")
     plot = commands.add_parser("plot", help="plot the stresses of a finished run",
                                description="Write RUN/stresses.png from RUN's CSV files.")
     plot.add_argument("run", help="a folder written by `solve`")
     return parser
 
 
-def _terminate_on_sigterm():
-    """Turn SIGTERM into KeyboardInterrupt, so that clean-up runs as for Ctrl-C."""
+def _stop_on_signals():
+    """Turn SIGINT and SIGTERM into Interrupted, so that clean-up runs for both and the
+    exit status tells them apart."""
     def handler(signum, frame):
-        raise KeyboardInterrupt(f"signal {signum}")
-    signal.signal(signal.SIGTERM, handler)
+        raise Interrupted(signum)
+    for signum in EXIT_INTERRUPTED:
+        signal.signal(signum, handler)
+
+
+def _interrupted(error):
+    signum = getattr(error, "signum", signal.SIGINT)
+    print("interrupted" if signum == signal.SIGINT else "terminated", file=sys.stderr)
+    return EXIT_INTERRUPTED[signum]
 
 
 def _progress(row, status):
@@ -119,17 +140,17 @@ def _progress(row, status):
 def _sweep(args):
     from .sweep import run_sweep
     try:
-        table = run_sweep(args.file, args.out, args.engine, args.jobs, args.scheduler)
-    except (ParameterError, FreeFemMissing, OSError) as error:
+        table = run_sweep(args.file, args.out, args.engine, args.jobs, args.scheduler,
+                          retry_failed=args.retry_failed)
+    except (ParameterError, FreeFemMissing) as error:
         print(f"error: {error}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print("interrupted: finished runs are kept, run the sweep again to resume",
-              file=sys.stderr)
-        return 130
+        return EXIT_REFUSED
+    except KeyboardInterrupt as error:
+        print("finished runs are kept; run the sweep again to resume", file=sys.stderr)
+        return _interrupted(error)
     counts = table["status"].value_counts().to_dict() if len(table) else {}
     print(f"{len(table)} runs: " + ", ".join(f"{n} {s}" for s, n in sorted(counts.items())))
-    return 0
+    return EXIT_CONVERGED if set(counts) <= {"converged"} else EXIT_NOT_CONVERGED
 
 
 def scene_from_arguments(args):
@@ -142,33 +163,50 @@ def scene_from_arguments(args):
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
-    _terminate_on_sigterm()
-    if args.command == "plot":
-        from .plot import plot_run
+    _stop_on_signals()
+    try:
+        if args.command == "plot":
+            return _plot(args)
+        if args.command == "sweep":
+            return _sweep(args)
+        return _solve(args)
+    except KeyboardInterrupt as error:
+        return _interrupted(error)
+    except Exception:                    # a bug: say so, with the traceback
+        traceback.print_exc()
+        print("internal error: please report it with the traceback above", file=sys.stderr)
+        return EXIT_INTERNAL
+
+
+def _plot(args):
+    from .plot import plot_run
+    try:
         print(plot_run(args.run))
-        return 0
-    if args.command == "sweep":
-        return _sweep(args)
-    from .solve import RunFailed, solve
+    except ParameterError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_REFUSED
+    return EXIT_CONVERGED
+
+
+def _solve(args):
+    from .solve import solve
 
     try:
         scene, settings = scene_from_arguments(args)
-        summary = solve(scene, settings, args.out, None if args.quiet else _progress)
+        summary = solve(scene, settings, args.out, None if args.quiet else _progress,
+                        overwrite=args.overwrite)
     except (ParameterError, FreeFemMissing) as error:
         print(f"error: {error}", file=sys.stderr)
-        return 2
+        return EXIT_REFUSED
     except RunFailed as error:
         print(f"not converged: {error} (report in {args.out}/summary.json)", file=sys.stderr)
-        return 1
-    except WorkerError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return 3
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
+        return EXIT_NOT_CONVERGED
+    except SystemFailure as error:
+        print(f"failed: {error}", file=sys.stderr)
+        return EXIT_FAILED
     descent = (f", descent {summary['descent']:.4e}" if scene.load.force is not None else "")
     print(f"converged in {summary['iterations']} iterations, {summary['wall_time_s']:.1f} s; "
           f"contact force {summary['total_force']:.4e}{descent}, contact zones "
           + ", ".join(f"[{a:.3f}, {b:.3f}]" for a, b in summary["contact_zones"])
           + f"; results in {args.out}")
-    return 0
+    return EXIT_CONVERGED

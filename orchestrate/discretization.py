@@ -125,6 +125,8 @@ class Problem:
     subdomains: dict           # name -> Subdomain, in a fixed order
     interfaces: tuple
     lowest: float              # height of the indenter's lowest point at first touch
+    penalty: float             # theta, in the scene's units (Settings.theta b/E)
+    robin: float               # gamma, in the scene's units (Settings.robin_parameter E/b)
 
     def sides_of(self, name):
         """(interface index, side index) of every side of a subdomain, in interface order."""
@@ -307,7 +309,8 @@ def discretize(scene, settings):
         subdomains, key=lambda n: int(n[len("coating"):])))
     ordered["base"] = Subdomain("base", "body", scene.base.E, scene.base.nu,
                                 base_plan(scene, settings, face, contacts, bonds, face_size))
-    return Problem(scene, settings, ordered, interfaces, lowest)
+    return Problem(scene, settings, ordered, interfaces, lowest,
+                   settings.theta / scene.modulus, settings.robin_parameter * scene.modulus)
 
 
 def _shell_coefficients(n, c_v, c_w, c_gamma):

@@ -307,12 +307,16 @@ def _mirrored(mesh):
 
 @contextmanager
 def _gmsh_session():
-    """gmsh initialised for one model. gmsh installs its own C-level signal handlers;
-    the driver's (SIGINT, SIGTERM: clean up the workers) are put back afterwards. Only
-    the main thread has signal handlers (a Dask worker meshes in another thread)."""
+    """gmsh initialised for one model. gmsh installs its own C-level signal handlers
+    while it works; SIGINT and SIGTERM are held back meanwhile (blocked: they wait,
+    pending) and the driver's handlers put back before they are let through, so that a
+    signal during meshing stops the run, with its clean-up, once the body is meshed.
+    Only the main thread has signal handlers (a Dask worker meshes in another thread)."""
     main_thread = threading.current_thread() is threading.main_thread()
-    handlers = ({sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
-                if main_thread else {})
+    held = {signal.SIGINT, signal.SIGTERM}
+    handlers = {sig: signal.getsignal(sig) for sig in held} if main_thread else {}
+    if main_thread:
+        signal.pthread_sigmask(signal.SIG_BLOCK, held)
     gmsh.initialize(interruptible=False)
     try:
         yield
@@ -321,6 +325,8 @@ def _gmsh_session():
         for sig, handler in handlers.items():
             if handler is not None:
                 signal.signal(sig, handler)
+        if main_thread:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, held)
 
 
 def _to_meshio():

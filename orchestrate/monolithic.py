@@ -21,7 +21,7 @@ def write_problem(problem, files, path):
     scene, names = problem.scene, list(problem.subdomains)
     load = (f"force {scene.half_force!r}" if scene.load.force is not None
             else f"descent {scene.load.displacement!r}")
-    lines = [f"{problem.settings.theta!r} {load} {len(names)} {len(problem.interfaces)}"]
+    lines = [f"{problem.penalty!r} {load} {len(names)} {len(problem.interfaces)}"]
     for name, subdomain in problem.subdomains.items():
         if subdomain.kind == "body":
             numbers = [subdomain.E, subdomain.nu]
@@ -72,7 +72,7 @@ def interface_stresses(problem, traces):
     """{interface index: stress} from the traces by the penalty laws: a contact's
     sigma_n = (d - u_A - u_B)^- / theta, a bond's traction on the base (u_A - u_B)/theta
     as (sigma_t, sigma_n)."""
-    theta, stresses = problem.settings.theta, {}
+    theta, stresses = problem.penalty, {}
     for i, interface in enumerate(problem.interfaces):
         a, b = traces[i, 0], traces[i, 1]
         if interface.kind == "contact":

@@ -1,5 +1,7 @@
-"""Files of a run. Every file is written to a temporary name and renamed, so a file
-that exists is complete; summary.json, written last, marks a finished run."""
+"""Files of a run. A run writes into its private scratch folder (orchestrate/folders.py),
+which takes the output folder's name once complete; summary.json, written last, marks a
+finished run. Files written elsewhere (tables of sweeps, figures) go to a temporary name
+and are renamed, so a file that exists is complete."""
 
 import csv
 import json
@@ -10,28 +12,76 @@ import meshio
 import numpy as np
 import pandas as pd
 
+from .errors import SystemFailure, system_failure
+
 
 def _atomic(path):
     path = Path(path)
     return path, path.with_name(f".{path.name}.partial")
 
 
-def write_json(path, data):
+def _written(path, write):
+    """Run write(partial path), then rename; a failed write leaves nothing and says why."""
     path, partial = _atomic(path)
-    partial.write_text(json.dumps(data, indent=2, sort_keys=False) + "\n")
-    os.replace(partial, path)
+    try:
+        write(partial)
+        os.replace(partial, path)
+    except OSError as error:
+        partial.unlink(missing_ok=True)
+        raise system_failure(error, f"writing {path.name}") from None
+
+
+def write_json(path, data):
+    _written(path, lambda partial: partial.write_text(json.dumps(data, indent=2) + "\n"))
 
 
 def write_csv(path, columns):
     """Write ``{name: values}`` as CSV, columns in the given order, full precision."""
-    path, partial = _atomic(path)
     names = list(columns)
     rows = zip(*(np.asarray(columns[n]).tolist() for n in names))
-    with open(partial, "w", newline="") as out:
-        writer = csv.writer(out)
-        writer.writerow(names)
-        writer.writerows(rows)
-    os.replace(partial, path)
+
+    def write(partial):
+        with open(partial, "w", newline="") as out:
+            writer = csv.writer(out)
+            writer.writerow(names)
+            writer.writerows(rows)
+    _written(path, write)
+
+
+def check_written(prefix, kind, written):
+    """Raise SystemFailure unless a worker's files next to ``prefix`` are whole: as many
+    rows, points and lines as it reported writing (body: CSV rows, VTU points, reaction
+    lines; shell: field rows). FreeFEM does not report a failed write; a full disk or a
+    file size limit leaves its files short."""
+    expected = ({f"{prefix}.csv": written[0] + 1, f"{prefix}_reactions.txt": written[2]}
+                if kind == "body" else {f"{prefix}_fields.csv": written[0] + 1})
+    for path, lines in expected.items():
+        found = _line_count(path)
+        if found != lines:
+            raise SystemFailure(f"{os.path.basename(path)} is incomplete ({found} of {lines} "
+                                "lines): the disk is full or a file size limit was reached")
+    if kind == "body" and not _ends_with(f"{prefix}.vtu", b"</VTKFile>"):
+        raise SystemFailure(f"{os.path.basename(prefix)}.vtu is incomplete: the disk is "
+                            "full or a file size limit was reached")
+
+
+def _line_count(path):
+    try:
+        with open(path, "rb") as f:
+            return sum(1 for _ in f)
+    except OSError:
+        return 0
+
+
+def _ends_with(path, tail):
+    try:
+        with open(path, "rb") as f:
+            f.seek(0, os.SEEK_END)
+            size = f.tell()
+            f.seek(max(0, size - 256))
+            return f.read().rstrip().endswith(tail)
+    except OSError:
+        return False
 
 
 def write_history(path, history):
@@ -69,7 +119,5 @@ def write_shell_fields(fields_csv, spec, vtu_path):
     point_data = {"displacement": np.column_stack([displacement, np.zeros(len(data))])}
     for name in ("gamma", "T11", "T13", "M11"):
         point_data[name] = data[name].to_numpy()
-    path, partial = _atomic(vtu_path)
-    meshio.write(partial, meshio.Mesh(points, [("line", lines[keep])], point_data=point_data),
-                 file_format="vtu")
-    os.replace(partial, path)
+    mesh = meshio.Mesh(points, [("line", lines[keep])], point_data=point_data)
+    _written(vtu_path, lambda partial: meshio.write(partial, mesh, file_format="vtu"))

@@ -11,14 +11,22 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
+from .errors import ParameterError  # noqa: E402
+
 
 def plot_run(run_dir, path=None):
     """Write ``run_dir/stresses.png``: the contact stress of every contact interface
     and the bond stresses (normal, shear) of every patch against x1/b."""
+    try:
+        with open(os.path.join(run_dir, "summary.json")) as f:
+            summary = json.load(f)
+    except (OSError, ValueError):
+        raise ParameterError(f"{run_dir} holds no finished run (no readable summary.json)") from None
+    if not summary.get("converged"):
+        raise ParameterError(f"{run_dir}: the run did not converge ({summary.get('status')}): "
+                             "there are no stresses to plot")
     contact = pd.read_csv(os.path.join(run_dir, "contact.csv"))
     interface = pd.read_csv(os.path.join(run_dir, "interface.csv"))
-    with open(os.path.join(run_dir, "summary.json")) as f:
-        summary = json.load(f)
     figure, axes = plt.subplots(figsize=(6.4, 4.0))
     for k, (name, part) in enumerate(contact.groupby("interface", sort=False)):
         axes.plot(part.x1, part.sigma_n, color="C0",

@@ -109,6 +109,14 @@ def contact_traction(layout, x):
 # run cycling (caught, finished at eps_u: 94). The final answer does not depend on it.
 ACTIVE_SET_TOLERANCE = 1e-2
 
+# The stopping test's amplification needs a few pairs of iterates of the final set.
+MIN_SECANTS = 3
+
+# Tractions below TRACTION_FLOOR times gamma ||u|| (the Robin coefficient times the
+# displacements: the tractions' natural scale) count as zero in relative changes; real
+# contact and bond tractions are 1e-2 to 1 of it.
+TRACTION_FLOOR = 1e-6
+
 
 @dataclass
 class LoopResult:
@@ -120,6 +128,7 @@ class LoopResult:
     reason: str
     history: list = field(default_factory=list)
     descent: float = None       # the stamp's descent in the last solve
+    error_estimate: float = None  # estimated relative error of the state (loops' docstrings)
 
 
 class ConvergenceMonitor:
@@ -193,16 +202,17 @@ class _Loop:
     def __init__(self, solve, problem, settings, progress):
         self.solve, self.problem, self.settings, self.progress = solve, problem, settings, progress
         self.layout = StateLayout(problem.interfaces)
-        self.gamma = settings.robin_parameter
+        self.gamma = problem.robin
         self.monitor = ConvergenceMonitor(settings.max_iterations, displacement_scale(problem),
                                           self.window)
         self.history = []
         self.start = time.perf_counter()
         self.descent = None
+        self.estimate = math.inf
 
     def iterate(self, x, psi):
         """Solve every subdomain for the state x and the contact set psi; return x~."""
-        data = robin_data(self.problem, self.layout, x, psi, self.settings.theta, self.gamma,
+        data = robin_data(self.problem, self.layout, x, psi, self.problem.penalty, self.gamma,
                           self.hold_inactive)
         traces, seconds, self.descent = self.solve(data)
         self.seconds = seconds
@@ -217,7 +227,10 @@ class _Loop:
         traction = layout.contact(image, "t", 0) + layout.contact(image, "t", 1)
         row = {
             "iteration": len(self.history) + 1,
-            "relative_change": change,
+            "relative_change": max(change),
+            "displacement_change": change[0],
+            "traction_change": change[1],
+            "error_estimate": self.estimate,
             "active_points": int(psi.sum()),
             "active_set_changed": previous_psi is not None and bool(np.any(psi != previous_psi)),
             "active_set_update": update,
@@ -236,36 +249,63 @@ class _Loop:
             self.progress(row, status or "running")
 
     def relative_change(self, new, old):
-        return (self.layout.displacement_norm(new - old)
-                / max(self.layout.displacement_norm(new), 1e-300))
+        """(displacements, tractions): the change from old to new relative to new, in
+        the discrete L2 norms of the interfaces. Tractions are measured against at least
+        TRACTION_FLOOR gamma ||u||: without contact they are zero up to round-off, and
+        their relative change would be noise."""
+        u, t = self.layout.norms(new)
+        du, dt = self.layout.norms(new - old)
+        return du / max(u, 1e-300), dt / max(t, TRACTION_FLOOR * self.gamma * u, 1e-300)
+
+    def converged(self, error):
+        eps = self.settings.eps_u
+        return error < eps, (f"estimated error {error:.3g} < eps_u = {eps:g} in the "
+                             "interface displacements and tractions")
 
     def result(self, image, psi, status, reason):
         return LoopResult(image, psi, len(self.history), status == "converged", status,
-                          reason, self.history, self.descent)
+                          reason, self.history, self.descent, self.estimate)
 
 
 class _PaperLoop(_Loop):
-    """(21)-(24): Psi from every iterate, fixed relaxation rho."""
+    """(21)-(24): Psi from every iterate, fixed relaxation rho.
+
+    A fixed-point iteration that contracts by q per step is still ||x_k - x_{k-1}|| q /
+    (1 - q) away from its limit; q is read off the last CONTRACTION_WINDOW changes. The
+    paper's stopping test, the change alone, stops a slow loop far from its answer."""
+
+    CONTRACTION_WINDOW = 10
 
     def run(self):
         layout, rho = self.layout, self.settings.rho
-        x, previous_psi = layout.zeros(), None
+        x, previous_psi, changes = layout.zeros(), None, []
         for iteration in range(1, self.settings.max_iterations + 1):
             psi = (self.penetration(x) < 0).astype(float)
             image = self.iterate(x, psi)
             x_new = rho * image + (1.0 - rho) * x
             change = self.relative_change(x_new, x)
+            changes.append(max(change))
             x = x_new
-            if change < self.settings.eps_u:
+            self.estimate = max(changes[-1], _contraction_bound(changes, self.CONTRACTION_WINDOW))
+            done, reason = self.converged(self.estimate)
+            if done:
                 self.record(image, psi, previous_psi, change, 0, "converged")
-                return self.result(image, psi, "converged",
-                                   f"relative change {change:.3g} < eps_u = {self.settings.eps_u:g}")
-            failure = self.monitor.check(iteration, x, change)
+                return self.result(image, psi, "converged", reason)
+            failure = self.monitor.check(iteration, x, max(change))
             self.record(image, psi, previous_psi, change, 0, failure and failure[0])
             if failure:
                 return self.result(image, psi, *failure)
             previous_psi = psi
         raise AssertionError("the monitor stops at max_iterations")
+
+
+def _contraction_bound(changes, window):
+    """q/(1 - q) times the last change, q the mean contraction over the last ``window``
+    changes (infinite while there are too few, or without contraction)."""
+    if len(changes) < window + 1 or changes[-1 - window] <= 0:
+        return math.inf
+    q = (changes[-1] / changes[-1 - window]) ** (1.0 / window)
+    return changes[-1] * q / (1.0 - q) if q < 1 else math.inf
 
 
 class _ActiveSetLoop(_Loop):
@@ -274,7 +314,19 @@ class _ActiveSetLoop(_Loop):
     Psi is updated once the inner residual is below ACTIVE_SET_TOLERANCE. Should Psi
     return to a set already tried, the updates were too inexact to tell the edge points
     apart: from then on they wait for the full tolerance eps_u, and only a cycle under
-    that tolerance stops the loop."""
+    that tolerance stops the loop.
+
+    Stopping test. The residual r = x~ - x of an iterate underestimates its distance to
+    the fixed point by up to ||(I - J)^-1|| (1/(1 - q) for a map that contracts by q): a
+    slow map has a small residual far from its answer. The history of the frozen set
+    shows that factor: every pair of iterates gives dr = (J - I) dx, and the largest
+    ||dx|| / ||dr|| (Anderson.amplification) bounds it from below. The loop stops when Psi
+    is settled and the residual times that factor is below eps_u, relative, in the
+    interface displacements and in the tractions (the stresses), with at least
+    MIN_SECANTS pairs seen in the final set. Measured against runs to 1e-12: the
+    estimate is 2-3 times the actual error of the contact stress (L2) for gamma = 2
+    (the default), 0.1 and 0.01, where the residual alone was 10, 200 and 1000 times
+    too small. Psi is updated on the displacements' change alone, as before."""
 
     window = 200
     hold_inactive = True      # constant matrices: each worker factorises once (measured:
@@ -295,20 +347,22 @@ class _ActiveSetLoop(_Loop):
         for iteration in range(1, self.settings.max_iterations + 1):
             image = self.iterate(x, psi)
             change = self.relative_change(image, x)
-            failure = self.monitor.check(iteration, image, change)
+            failure = self.monitor.check(iteration, image, max(change))
             new_psi = updated_active_set(psi, self.penetration(image),
                                          contact_traction(layout, image))
             psi_settled = np.array_equal(new_psi, psi)
-            if change < eps and psi_settled:
+            x_next = anderson.step(x, image)
+            amplification = anderson.amplification() if anderson.secants >= MIN_SECANTS else math.inf
+            self.estimate = max(change) * max(1.0, amplification)
+            done, reason = self.converged(self.estimate)
+            if done and psi_settled:
                 self.record(image, psi, previous_psi, change, update, "converged")
-                return self.result(image, psi, "converged",
-                                   f"contact set settled and relative change {change:.3g} "
-                                   f"< eps_u = {eps:g}")
+                return self.result(image, psi, "converged", f"contact set settled, {reason}")
             self.record(image, psi, previous_psi, change, update, failure and failure[0])
             if failure:
                 return self.result(image, psi, *failure)
             previous_psi = psi
-            if change < tolerance and not psi_settled:
+            if change[0] < tolerance and not psi_settled:
                 if new_psi.tobytes() in seen:
                     if tolerance <= eps:
                         return self.result(image, psi, "stagnated",
@@ -320,5 +374,5 @@ class _ActiveSetLoop(_Loop):
                 anderson.reset()
                 self.monitor.restart(iteration)
             else:
-                x = anderson.step(x, image)
+                x = x_next
         raise AssertionError("the monitor stops at max_iterations")

@@ -21,7 +21,6 @@ stagnates writes only history.csv and a summary.json that says why.
 
 import math
 import os
-import tempfile
 import time
 
 import numpy as np
@@ -29,36 +28,34 @@ import numpy as np
 from . import freefem
 from .contact import contact_half_width, contact_zones
 from .discretization import discretize
+from .errors import RunFailed  # noqa: F401  (raised here; callers import it from here too)
+from .folders import RunFolder, WorkFolder
 from .labels import LABELS
 from .outputs import read_reactions, write_csv, write_history, write_json, write_shell_fields
+from .problem_size import check_size
 from .robin import run_robin_loop
 from .scene import check_compatible, to_dict
 from .state import StateLayout
 from .subdomains import start_subdomains, write_inputs
 
 
-class RunFailed(RuntimeError):
-    """The Robin loop diverged, stagnated or hit its iteration limit."""
-
-    def __init__(self, summary):
-        super().__init__(f"{summary['status']}: {summary['reason']}")
-        self.summary = summary
-
-
-def solve(scene, settings, out_dir, progress=None):
+def solve(scene, settings, out_dir, progress=None, overwrite=False):
     """Solve the scene; write results into ``out_dir``; return the summary dict.
 
-    Raises ParameterError before any work for a scene the settings cannot solve, and
-    RunFailed (after writing the report) if the loop does not converge."""
+    Before any work: ParameterError for a scene the settings cannot solve, a problem
+    too large for the machine, or an output folder another run holds or is writing
+    (``overwrite`` replaces an earlier run's folder whole). Then RunFailed (after
+    writing the report) if the loop does not converge, SystemFailure if a worker or a
+    file fails. The folder appears only once complete (orchestrate/folders.py)."""
     freefem.executable()             # a missing FreeFEM is reported before any work
     check_compatible(scene, settings)
     problem = discretize(scene, settings)
-    out_dir = os.path.abspath(out_dir)
-    os.makedirs(out_dir, exist_ok=True)
+    check_size(problem)
     start = time.perf_counter()
-    with tempfile.TemporaryDirectory(prefix="robin-") as workdir:
+    with RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir:
+        scratch = str(folder.scratch)
         files = write_inputs(problem, workdir)
-        with start_subdomains(problem, settings, files, workdir, out_dir) as subdomains:
+        with start_subdomains(problem, settings, files, workdir, scratch) as subdomains:
             setup_seconds = time.perf_counter() - start
             loop = run_robin_loop(subdomains.solve, problem, settings, progress)
             if loop.converged:
@@ -70,29 +67,29 @@ def solve(scene, settings, out_dir, progress=None):
             if loop.converged:
                 subdomains.write_outputs()   # the workers hold the fields of the last solve
             dofs = subdomains.dofs
-    wall_time = time.perf_counter() - start
-
-    write_history(os.path.join(out_dir, "history.csv"), loop.history)
-    summary = {
-        "scene": to_dict(scene),
-        "settings": to_dict(settings),
-        "status": loop.status,
-        "reason": loop.reason,
-        "converged": loop.converged,
-        "iterations": loop.iterations,
-        "final_relative_change": loop.history[-1]["relative_change"],
-        "wall_time_s": wall_time,
-        "setup_time_s": setup_seconds,
-        "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
-        "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
-        "dofs": dofs,
-    }
+        summary = {
+            "scene": to_dict(scene),
+            "settings": to_dict(settings),
+            "status": loop.status,
+            "reason": loop.reason,
+            "converged": loop.converged,
+            "iterations": loop.iterations,
+            "final_relative_change": loop.history[-1]["relative_change"],
+            "error_estimate": loop.error_estimate,
+            "wall_time_s": None,
+            "setup_time_s": setup_seconds,
+            "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
+            "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
+            "dofs": dofs,
+        }
+        write_history(os.path.join(scratch, "history.csv"), loop.history)
+        if loop.converged:
+            summary.update(_write_results(problem, loop, scratch))
+        summary["wall_time_s"] = time.perf_counter() - start
+        write_json(os.path.join(scratch, "summary.json"), summary)
+        folder.commit()
     if not loop.converged:
-        write_json(os.path.join(out_dir, "summary.json"), summary)
         raise RunFailed(summary)
-
-    summary.update(_write_results(problem, loop, out_dir))
-    write_json(os.path.join(out_dir, "summary.json"), summary)
     return summary
 
 

@@ -108,3 +108,12 @@ class StateLayout:
         """Discrete L2 norm of the displacement traces over all interfaces."""
         mask = self.displacement_mask
         return float(np.sqrt(np.dot(self.entry_weight[mask], np.square(x[mask]))))
+
+    def traction_norm(self, x):
+        """Discrete L2 norm of the tractions over all interfaces."""
+        mask = ~self.displacement_mask
+        return float(np.sqrt(np.dot(self.entry_weight[mask], np.square(x[mask]))))
+
+    def norms(self, x):
+        """(displacement norm, traction norm)."""
+        return self.displacement_norm(x), self.traction_norm(x)

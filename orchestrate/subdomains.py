@@ -9,8 +9,10 @@ request is written before any reply is read, so the workers compute at the same 
 import os
 import time
 
+from .errors import system_failure
 from .exchange import parse_reply, reply_count, request_arrays, write_sides
 from .mesh import body_mesh, coating_mesh, write_medit
+from .outputs import check_written
 from .body_plans import BodyPlan
 from .worker import CMD_OUTPUT, CMD_SOLVE, Worker
 
@@ -69,11 +71,12 @@ class Subdomains:
         self.workdir = workdir
         self.workers = {}
         self.sides = {name: problem.sides_of(name) for name in problem.subdomains}
-        self.specs = {}
+        self.specs, self.output_prefix = {}, {}
         for name, subdomain in problem.subdomains.items():
             script = "body.edp" if subdomain.kind == "body" else "shell.edp"
+            self.output_prefix[name] = os.path.join(output_dir, name)
             arguments = worker_arguments(subdomain, files[name]) + [
-                "-output", os.path.join(output_dir, name)]
+                "-output", self.output_prefix[name]]
             if subdomain.stamp:
                 arguments += load_arguments(problem)
             self.specs[name] = (script, arguments)
@@ -83,8 +86,12 @@ class Subdomains:
         """Start every worker (they assemble and factorise at once); return their dofs."""
         try:
             for name, (script, arguments) in self.specs.items():
-                self.workers[name] = Worker(name, script, arguments, self.workdir)
+                self.workers[name] = Worker(name, script, arguments, self.workdir,
+                                            self.problem.settings.worker_timeout)
             return {name: worker.wait_ready() for name, worker in self.workers.items()}
+        except OSError as error:
+            self.close()
+            raise system_failure(error, "starting the FreeFEM workers") from None
         except BaseException:
             self.close()
             raise
@@ -112,11 +119,13 @@ class Subdomains:
         return traces, seconds, descent
 
     def write_outputs(self):
-        """Ask every worker to write its fields (CSV, VTU) and reactions."""
+        """Ask every worker to write its fields (CSV, VTU) and reactions next to its
+        output prefix, and check that every file is whole."""
         for worker in self.workers.values():
             worker.send(CMD_OUTPUT)
-        for worker in self.workers.values():
-            worker.receive_arrays(0)
+        for name, worker in self.workers.items():
+            written, = worker.receive_arrays(1)
+            check_written(self.output_prefix[name], self.problem.subdomains[name].kind, written)
 
     def close(self):
         for worker in self.workers.values():

@@ -19,16 +19,22 @@ scene file (relative to the sweep file; default: the paper's scene):
     h2 = 0.0625
 
 Every point is one run folder, results/<name>/runs/<id>/, written as `solve` writes it
-(id: a hash of the point's values, so a point keeps its folder when the sweep grows).
-A run is computed in a scratch folder and renamed into place once its summary.json is
-written, so a folder that exists is finished: re-running a sweep skips it, and a sweep
-interrupted by Ctrl-C, a killed driver or a full disk loses no finished run. Runs that
-diverge, stagnate, fail or are invalid are rows with their reason. All summaries gather
-into results/<name>/runs.csv, one row per point.
+(id: a hash of the point's values, so a point keeps its folder when the sweep grows):
+it appears only once complete, so re-running a sweep skips it, and a sweep interrupted
+by Ctrl-C, a killed driver or a full disk loses no finished run. Every point is checked
+before the first run (its scene, settings and size): a bad one refuses the sweep, all
+bad points named. Runs that diverge or stagnate are rows with their reason; runs that
+fail for a reason outside their numbers (a worker killed, a full disk) are rows with
+the cause, and are run again when the sweep is resumed (``--retry-failed``: those that
+did not converge too). All summaries gather into results/<name>/runs.csv, one row per
+point in the file's order. A lock in the sweep's folder keeps a second sweep out; the
+sweep touches nothing in it but its runs and its table.
 
 Engines: local processes (default, one run per core), or Dask distributed (``--engine
 dask`` with ``--scheduler tcp://HOST:PORT`` for a cluster sharing the results folder, or
-a local Dask cluster of ``--jobs`` workers), with the same sweep file.
+a local Dask cluster of ``--jobs`` workers), with the same sweep file. A worker process
+that dies (killed, out of memory) costs only the run it held: that run is tried once
+more, then recorded as failed.
 """
 
 import concurrent.futures
@@ -36,7 +42,7 @@ import hashlib
 import json
 import multiprocessing
 import os
-import shutil
+import re
 import sys
 import time
 import tomllib
@@ -46,46 +52,88 @@ from pathlib import Path
 
 import pandas as pd
 
+from .errors import ParameterError
+from .folders import (RunFolder, hold_lock, release_lock, remove_dead_run_leftovers,
+                      remove_dead_work_folders)
 from .outputs import write_json
 from .paths import RESULTS_DIR
-from .scene import ParameterError, Settings, scene_from_dict, to_dict
+from .scene import Settings, check_compatible, scene_from_dict, to_dict
 from .scene_file import is_scene_key, scene_and_settings, shorthand_values
 
 SETTINGS_FIELDS = {f.name for f in fields(Settings)}
-FAILED = ("diverged", "stagnated", "max_iterations", "contact_zone", "error", "invalid")
+NOT_CONVERGED = ("diverged", "stagnated", "max_iterations", "contact_zone")
+FAILED = NOT_CONVERGED + ("error",)
+NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+ATTEMPTS = 2           # a run whose worker process dies is tried this often
 
 
 # ---- the sweep file ---------------------------------------------------------------------
 
 def load_sweep(path):
-    """(name, points): every point a dict of scene and settings values, in file order."""
+    """(name, points): every point a dict of scene and settings values, in file order.
+    A malformed file is refused naming what is wrong."""
     path = Path(path)
-    with open(path, "rb") as f:
-        data = tomllib.load(f)
+    try:
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+    except OSError as error:
+        raise ParameterError(f"sweep file {path}: {error.strerror}") from None
+    except tomllib.TOMLDecodeError as error:
+        raise ParameterError(f"{path}: not a valid TOML file: {error}") from None
     unknown_sections = set(data) - {"name", "fixed", "grid", "grids", "runs"}
     if unknown_sections:
-        raise ParameterError(f"unknown sweep section(s): {sorted(unknown_sections)}")
+        raise ParameterError(f"{path}: unknown sweep section(s) {sorted(unknown_sections)} "
+                             "(allowed: name, fixed, grid, grids, runs)")
+    name = data.get("name", path.stem)
+    if not isinstance(name, str) or not NAME.match(name):
+        raise ParameterError(f"{path}: name = {name!r} must be a plain folder name (letters, "
+                             "digits, _ . -, not starting with . or -): the sweep's folder is "
+                             "results/<name>")
     fixed = data.get("fixed", {})
     grids = ([data["grid"]] if "grid" in data else []) + data.get("grids", [])
     singles = data.get("runs", [])
+    for where, tables in (("fixed", [fixed]), ("grid", grids), ("runs", singles)):
+        if not isinstance(tables, list) or not all(isinstance(t, dict) for t in tables):
+            raise ParameterError(f"{path}: [{where}] must be a table (or [[{where}]] tables)")
     for table in (fixed, *grids, *singles):
         unknown = {key for key in table if key not in SETTINGS_FIELDS and key != "scene"
                    and not is_scene_key(key)}
         if unknown:
-            raise ParameterError(f"unknown scene or settings parameter(s) in {path.name}: "
+            raise ParameterError(f"{path}: unknown scene or settings parameter(s) "
                                  f"{sorted(unknown)}")
     points = []
     for grid in grids:
         for key, values in grid.items():
             if not isinstance(values, list) or not values:
-                raise ParameterError(f"grid value {key} must be a non-empty list")
+                raise ParameterError(f"{path}: grid value {key} = {values!r} must be a "
+                                     "non-empty list")
         keys = list(grid)
         points += [{**fixed, **dict(zip(keys, combination))}
                    for combination in product(*(grid[k] for k in keys))]
     points += [{**fixed, **single} for single in singles]
     if not points:
-        raise ParameterError(f"{path.name} defines no run: give a [grid], [[grids]] or [[runs]]")
-    return data.get("name", path.stem), points
+        raise ParameterError(f"{path} defines no run: give a [grid], [[grids]] or [[runs]]")
+    return name, points
+
+
+def check_points(points, scene_dir="."):
+    """Refuse the sweep, before any run, if any point's scene, settings or size is bad;
+    the message names every bad point."""
+    from .discretization import discretize
+    from .problem_size import check_size
+
+    problems = []
+    for number, values in enumerate(points, start=1):
+        try:
+            scene, settings = point_scene(values, scene_dir)
+            check_compatible(scene, settings)
+            check_size(discretize(scene, settings))
+        except ParameterError as error:
+            problems.append(f"point {number} {values}: {error}")
+    if problems:
+        shown = problems[:10] + ([f"... and {len(problems) - 10} more"] if len(problems) > 10 else [])
+        raise ParameterError(f"{len(problems)} of {len(points)} points refused:\n  "
+                             + "\n  ".join(shown))
 
 
 def point_scene(values, scene_dir="."):
@@ -104,52 +152,55 @@ def point_id(values):
 
 # ---- one run, in a worker process -----------------------------------------------------
 
-def run_point(values, sweep_dir, scene_dir="."):
-    """Solve one point into sweep_dir/runs/<id>/ unless it is there; return its id.
+def run_point(values, sweep_dir, scene_dir=".", retry_failed=False):
+    """Solve one point into sweep_dir/runs/<id>/ unless it is done; return its id.
 
     Runs in an engine's worker process; never raises for a failed run: the reason goes
-    into the run's summary.json."""
-    from .solve import RunFailed, solve        # a worker process imports what it needs
+    into the run's summary.json (a run that failed outside its numbers, "error", is
+    run again; with ``retry_failed`` one that did not converge too)."""
+    from .errors import RunFailed, SystemFailure
+    from .solve import solve                   # a worker process imports what it needs
 
     identifier = point_id(values)
-    final = Path(sweep_dir) / "runs" / identifier
-    if (final / "summary.json").exists():
+    folder = Path(sweep_dir) / "runs" / identifier
+    if finished(folder, retry_failed):
         return identifier
-    scratch = Path(sweep_dir) / "scratch" / identifier
-    shutil.rmtree(scratch, ignore_errors=True)
-    scratch.mkdir(parents=True)
-    report = {"point": values}
     try:
         scene, settings = point_scene(values, scene_dir)
-        solve(scene, settings, scratch / "run")
-    except ParameterError as error:
-        report.update(status="invalid", reason=str(error), converged=False)
+        solve(scene, settings, folder, overwrite=True)
     except RunFailed:
         pass                                   # solve wrote the report
-    except Exception as error:                 # WorkerError, a full disk, ...: a row, not a crash
-        report.update(status="error", reason=f"{type(error).__name__}: {error}",
-                      converged=False)
-    run_dir = scratch / "run"
-    run_dir.mkdir(exist_ok=True)
-    summary_path = run_dir / "summary.json"
-    summary = json.loads(summary_path.read_text()) if summary_path.exists() else {}
-    write_json(summary_path, {**summary, **report})
-    shutil.rmtree(final, ignore_errors=True)   # a partial copy from an earlier crash
-    final.parent.mkdir(parents=True, exist_ok=True)
-    os.replace(run_dir, final)                 # a finished run appears at once, whole
-    shutil.rmtree(scratch, ignore_errors=True)
+    except (SystemFailure, ParameterError) as error:
+        write_report(folder, {"status": "error", "converged": False, "reason": str(error)})
     return identifier
 
 
-def _worker_init(scratch_dir):
-    """Local worker processes: temporary files under the sweep, death with the driver."""
-    import tempfile
+def finished(folder, retry_failed=False):
+    """Whether a point's run is done: converged, or (unless retry_failed) not converged
+    for reasons of its numbers."""
+    status = run_status(folder)
+    return status == "converged" or (status in NOT_CONVERGED and not retry_failed)
 
+
+def run_status(folder):
+    try:
+        return json.loads((Path(folder) / "summary.json").read_text()).get("status")
+    except (OSError, ValueError):
+        return None
+
+
+def write_report(folder, report):
+    """A run folder holding only a summary: the report of a run that could not run."""
+    with RunFolder(folder, overwrite=True, option="run folder") as run:
+        write_json(run.scratch / "summary.json", report)
+        run.commit()
+
+
+def _worker_init():
+    """Local worker processes die with the driver (and their FreeFEM workers with them)."""
     from .worker import die_with_parent
 
     die_with_parent()
-    os.makedirs(scratch_dir, exist_ok=True)
-    tempfile.tempdir = scratch_dir
 
 
 # ---- the table ------------------------------------------------------------------------
@@ -168,18 +219,19 @@ def gather(sweep_dir, points):
             scene = scene_from_dict(summary["scene"])
             row.update(shorthand_values(scene))
             row.update(_flatten(to_dict(scene)))
-        # an invalid point has no settings: its values over the defaults
+        # a run that could not run has no settings: its values over the defaults
         settings = summary.get("settings") or {f.name: values.get(f.name, f.default)
                                                for f in fields(Settings)}
         row.update({f.name: settings[f.name] for f in fields(Settings)})
         for key in ("status", "reason", "converged", "iterations", "final_relative_change",
+                    "error_estimate",
                     "active_set_changes", "contact_force", "total_force", "descent",
                     "interface_force", "peak_contact_stress", "peak_interface_stress",
                     "contact_half_width", "wall_time_s", "setup_time_s",
                     "time_per_iteration_s"):
             row[key] = summary.get(key)
         rows.append(row)
-    return pd.DataFrame(rows).sort_values("id").reset_index(drop=True) if rows else pd.DataFrame()
+    return pd.DataFrame(rows)
 
 
 def _flatten(data, prefix=""):
@@ -239,88 +291,129 @@ class Progress:
             self.stream.write("\n")
 
 
-def _status(sweep_dir, identifier):
-    path = Path(sweep_dir) / "runs" / identifier / "summary.json"
-    return json.loads(path.read_text()).get("status") if path.exists() else "error"
-
-
 # ---- engines --------------------------------------------------------------------------
 
-def run_local(pending, sweep_dir, scene_dir, jobs, progress):
+def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False):
+    """Local worker processes, at most ``jobs`` runs at once. A worker process that dies
+    breaks its pool: the runs it held are tried again in a new one, ATTEMPTS times at
+    most, then recorded as failed."""
     context = multiprocessing.get_context("spawn")   # no inherited gmsh or threads
-    pool = concurrent.futures.ProcessPoolExecutor(
-        max_workers=jobs, mp_context=context, initializer=_worker_init,
-        initargs=(str(Path(sweep_dir) / "tmp"),))
-    try:
-        futures = {pool.submit(run_point, values, str(sweep_dir), str(scene_dir))
-                   for values in pending}
-        _follow(futures, sweep_dir, jobs, progress, concurrent.futures.as_completed)
-    except BaseException:
-        for process in list(getattr(pool, "_processes", {}).values()):
-            process.kill()                            # their FreeFEM workers die with them
-        pool.shutdown(wait=False, cancel_futures=True)
-        raise
-    pool.shutdown()
+    queue, attempts = list(pending), {}
+    while queue:
+        pool = concurrent.futures.ProcessPoolExecutor(max_workers=jobs, mp_context=context,
+                                                      initializer=_worker_init)
+        running = {}
+        try:
+            while queue or running:
+                while queue and len(running) < jobs:
+                    values = queue.pop(0)
+                    attempts[point_id(values)] = attempts.get(point_id(values), 0) + 1
+                    running[pool.submit(run_point, values, str(sweep_dir), str(scene_dir),
+                                        retry_failed)] = values
+                progress.update(running=len(running))
+                done, _ = concurrent.futures.wait(running, return_when="FIRST_COMPLETED")
+                for future in done:
+                    future.result()            # BrokenProcessPool: a worker died
+                    values = running.pop(future)
+                    progress.update(done=1, failed=_failed(sweep_dir, values),
+                                    running=len(running) + min(len(queue), jobs - len(running)))
+        except concurrent.futures.process.BrokenProcessPool:
+            for values in running.values():
+                if attempts[point_id(values)] < ATTEMPTS:
+                    queue.insert(0, values)
+                else:
+                    write_report(Path(sweep_dir) / "runs" / point_id(values), {
+                        "status": "error", "converged": False,
+                        "reason": f"the worker process running it died {ATTEMPTS} times "
+                                  "(killed, or out of memory)"})
+                    progress.update(done=1, failed=1)
+        finally:
+            if running:
+                _kill_pool(pool)
+            else:
+                pool.shutdown()
+        remove_dead_work_folders()
 
 
-def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None):
+def _kill_pool(pool):
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        process.kill()                                # their FreeFEM workers die with them
+    pool.shutdown(wait=False, cancel_futures=True)
+
+
+def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retry_failed=False):
+    """Dask distributed: a local cluster of ``jobs`` workers, or a scheduler's. A task
+    whose workers keep dying (Dask retries it) is recorded as failed."""
     from dask.distributed import Client, LocalCluster, as_completed
+    from distributed import KilledWorker
 
     cluster = None if scheduler else LocalCluster(
         n_workers=jobs, threads_per_worker=1, processes=True, dashboard_address=None)
     client = Client(scheduler or cluster)
     try:
-        futures = [client.submit(run_point, values, str(sweep_dir), str(scene_dir), pure=False)
-                   for values in pending]
-        _follow(set(futures), sweep_dir, jobs, progress, as_completed)
+        futures = {client.submit(run_point, values, str(sweep_dir), str(scene_dir),
+                                 retry_failed, pure=False): values for values in pending}
+        progress.update(running=min(jobs, len(futures)))
+        for future in as_completed(futures):
+            values = futures[future]
+            try:
+                future.result()
+            except KilledWorker:
+                write_report(Path(sweep_dir) / "runs" / point_id(values), {
+                    "status": "error", "converged": False,
+                    "reason": "the Dask workers running it kept dying (killed, or out of memory)"})
+            progress.update(done=1, failed=_failed(sweep_dir, values))
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
 
 
-def _follow(futures, sweep_dir, jobs, progress, as_completed):
-    remaining = len(futures)
-    progress.update(running=min(jobs, remaining))
-    for future in as_completed(futures):
-        identifier = future.result()
-        remaining -= 1
-        progress.update(done=1, failed=int(_status(sweep_dir, identifier) in FAILED),
-                        running=min(jobs, remaining))
+def _failed(sweep_dir, values):
+    return int(run_status(Path(sweep_dir) / "runs" / point_id(values)) != "converged")
 
 
 ENGINES = ("local", "dask")
 
 
-def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=sys.stderr):
+def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=sys.stderr,
+              retry_failed=False):
     """Run a sweep file; return its table. Finished runs are skipped."""
     name, points = load_sweep(path)
     scene_dir = Path(path).resolve().parent
     if engine not in ENGINES:
         raise ParameterError(f"engine = {engine!r} must be one of {ENGINES}")
+    if jobs is not None and jobs < 1:
+        raise ParameterError(f"--jobs = {jobs} must be a positive number")
     from . import freefem
     freefem.executable()                             # before any work
+    check_points(points, scene_dir)
     sweep_dir = Path(out) if out else RESULTS_DIR / name
-    for leftover in ("scratch", "tmp"):              # of an interrupted or killed sweep
-        shutil.rmtree(sweep_dir / leftover, ignore_errors=True)
-    (sweep_dir / "runs").mkdir(parents=True, exist_ok=True)
-    unique = list({point_id(p): p for p in points}.values())
-    pending = [p for p in unique
-               if not (sweep_dir / "runs" / point_id(p) / "summary.json").exists()]
-    jobs = jobs or os.cpu_count() or 1
-    progress = Progress(len(unique), stream)
-    progress.done = len(unique) - len(pending)
-    progress.failed = sum(_status(sweep_dir, point_id(p)) in FAILED
-                          for p in unique if p not in pending)
     try:
-        if pending:
-            if engine == "dask":
-                run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler)
-            else:
-                run_local(pending, sweep_dir, scene_dir, jobs, progress)
+        (sweep_dir / "runs").mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise ParameterError(f"sweep folder {sweep_dir}: {error.strerror}") from None
+    lock = hold_lock(sweep_dir / ".sweep.lock", f"sweep folder {sweep_dir}",
+                     "another sweep is running in it")
+    try:
+        remove_dead_run_leftovers(sweep_dir / "runs")     # of a sweep killed before
+        unique = list({point_id(p): p for p in points}.values())
+        pending = [p for p in unique
+                   if not finished(sweep_dir / "runs" / point_id(p), retry_failed)]
+        jobs = jobs or os.cpu_count() or 1
+        progress = Progress(len(unique), stream)
+        progress.done = len(unique) - len(pending)
+        progress.failed = sum(_failed(sweep_dir, p) for p in unique if p not in pending)
+        try:
+            if pending:
+                if engine == "dask":
+                    run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler, retry_failed)
+                else:
+                    run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed)
+        finally:
+            progress.close()
+            remove_dead_run_leftovers(sweep_dir / "runs")  # of runs whose process died
+            table = write_table(sweep_dir, unique)
     finally:
-        progress.close()
-        table = write_table(sweep_dir, unique)
-        for leftover in ("scratch", "tmp"):
-            shutil.rmtree(sweep_dir / leftover, ignore_errors=True)
+        release_lock(lock)
     return table

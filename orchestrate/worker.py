@@ -18,12 +18,20 @@ import time
 import numpy as np
 
 from . import freefem
+from .errors import SystemFailure
 
 CMD_STOP, CMD_SOLVE, CMD_OUTPUT = 0, 1, 2   # as in freefem/exchange.idp
 _POLL_SECONDS = 0.05
+DEFAULT_TIMEOUT = 600.0    # seconds a worker may take to answer (Settings.worker_timeout)
+
+# what a worker's death by a signal most likely means
+_DEATHS = {signal.SIGXFSZ: "a file size limit was reached (ulimit -f)",
+           signal.SIGKILL: "killed (by a user, or by the kernel for want of memory)",
+           signal.SIGSEGV: "crashed (segmentation fault)",
+           signal.SIGABRT: "aborted"}
 
 
-class WorkerError(RuntimeError):
+class WorkerError(SystemFailure):
     """A worker died, timed out or answered something unexpected."""
 
 
@@ -39,7 +47,7 @@ def die_with_parent():
 class Worker:
     """One FreeFEM process; ``name`` labels its FIFOs and log inside ``workdir``."""
 
-    def __init__(self, name, script, arguments, workdir, timeout=600.0):
+    def __init__(self, name, script, arguments, workdir, timeout=DEFAULT_TIMEOUT):
         self.name = name
         self.timeout = timeout
         self.request_path = os.path.join(workdir, f"{name}.request")
@@ -131,8 +139,9 @@ class Worker:
     def _check_alive(self):
         code = self.process.poll()
         if code is not None:
-            raise WorkerError(f"worker {self.name} exited with code {code}:\n"
-                              + freefem.log_tail(self.log_path))
+            how = (f"died: {_DEATHS.get(-code, signal.Signals(-code).name)}" if code < 0
+                   else f"exited with code {code}")
+            raise WorkerError(f"worker {self.name} {how}:\n" + freefem.log_tail(self.log_path))
 
     def _write(self, data, timeout=None):
         deadline = time.monotonic() + (timeout or self.timeout)
@@ -161,6 +170,8 @@ class Worker:
                 self._check_alive()
                 if time.monotonic() - start > self.timeout:
                     raise WorkerError(f"worker {self.name} gave no answer for "
-                                      f"{self.timeout:.0f} s:\n" + freefem.log_tail(self.log_path))
+                                      f"{self.timeout:g} s (Settings.worker_timeout; a "
+                                      "stopped or overloaded process?):\n"
+                                      + freefem.log_tail(self.log_path))
         tokens = b"".join(chunks).split()
         return [t.decode() for t in tokens[:-1]]

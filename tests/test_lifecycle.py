@@ -68,7 +68,7 @@ def test_a_finished_run_leaves_nothing(tmp_path):
     _assert_nothing_left(scratch)
 
 
-@pytest.mark.parametrize("signal_number, code", [(signal.SIGINT, 130), (signal.SIGTERM, 130)],
+@pytest.mark.parametrize("signal_number, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)],
                          ids=["Ctrl-C", "SIGTERM"])
 def test_an_interrupted_run_leaves_nothing(tmp_path, signal_number, code):
     process, scratch = _start(tmp_path, *LONG_RUN)
@@ -77,7 +77,7 @@ def test_an_interrupted_run_leaves_nothing(tmp_path, signal_number, code):
     process.send_signal(signal_number)
     _, stderr = process.communicate(timeout=60)
     assert process.returncode == code, stderr
-    assert "interrupted" in stderr
+    assert ("interrupted" if signal_number == signal.SIGINT else "terminated") in stderr
     _assert_nothing_left(scratch)
     assert not (tmp_path / "run" / "summary.json").exists()
 
@@ -91,6 +91,6 @@ def test_a_dying_worker_ends_the_run_with_a_clear_error(tmp_path):
     os.kill(coating[0], signal.SIGKILL)
     _, stderr = process.communicate(timeout=60)
     assert process.returncode == 3, stderr
-    assert "worker coating1 exited" in stderr
+    assert "worker coating1 died: killed" in stderr
     _assert_nothing_left(scratch)
     assert not (tmp_path / "run" / "summary.json").exists()
