@@ -144,8 +144,22 @@ class Problem:
 
 # ---- elements along the face -----------------------------------------------------------
 
+# Elements along one interface, and layers across one 2D coating, at most: beyond, the
+# arrays alone would exhaust the memory before the size check (problem_size.py) can run.
+MAX_ELEMENTS = 200_000
+
+
 def _count(length, size):
-    return max(1, round(length / size))
+    return _bounded(max(1, round(length / size)))
+
+
+def _bounded(count, what="interface elements"):
+    if count > MAX_ELEMENTS:
+        raise ParameterError(f"mesh_level, element_size: the scene would need {count:.3g} "
+                             f"{what} on one face (at most {MAX_ELEMENTS}): coarsen the mesh, "
+                             "or thicken a 2D coating (its cells are at most twice as wide as "
+                             "high)", "mesh_level")
+    return count
 
 
 def element_nodes(s0, s1, count, split_at_zero=False):
@@ -184,7 +198,8 @@ def chord_points(exact):
 # ---- the problem ------------------------------------------------------------------------
 
 def coating_layers(coating, level):
-    return level * max(1, round(coating.thickness / COATING_LAYER_HEIGHT))
+    return _bounded(level * max(1, round(coating.thickness / COATING_LAYER_HEIGHT)),
+                    "layers of cells")
 
 
 def discretize(scene, settings):
@@ -198,7 +213,8 @@ def discretize(scene, settings):
         if coating.model != "elastic":
             return lambda length: _count(length, size)
         layer = coating.thickness / coating_layers(coating, level)
-        return lambda length: max(_count(length, size), math.ceil(length / (MAX_ASPECT * layer)))
+        return lambda length: max(_count(length, size),
+                                  _bounded(math.ceil(length / (MAX_ASPECT * layer))))
 
     patches = []
     for number, coating in enumerate(scene.coatings, start=1):

@@ -22,6 +22,7 @@ import meshio
 import numpy as np
 
 from .body_plans import GROWTH
+from .faults import checkpoint
 from .labels import LABELS
 
 
@@ -319,6 +320,7 @@ def _gmsh_session():
         signal.pthread_sigmask(signal.SIG_BLOCK, held)
     gmsh.initialize(interruptible=False)
     try:
+        checkpoint("meshing")
         yield
     finally:
         gmsh.finalize()

@@ -87,7 +87,8 @@ def check_size(problem):
     if memory > limit_bytes:
         largest = max(dofs, key=dofs.get)
         raise ParameterError(
-            f"mesh_level = {problem.settings.mesh_level}: the problem is estimated at "
+            f"mesh_level = {problem.settings.mesh_level}, element_size = "
+            f"{problem.settings.element_size:g}: the problem is estimated at "
             f"{sum(dofs.values()):.3g} unknowns ({largest}: {dofs[largest]:.3g}) and "
             f"{memory / GIB:.1f} GiB of memory, above {what}: coarsen the mesh "
             "(mesh_level, element_size), thicken a 2D coating, or raise memory_limit",

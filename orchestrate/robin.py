@@ -40,6 +40,7 @@ import numpy as np
 
 from .acceleration import Anderson
 from .contact import penetration, updated_active_set
+from .faults import checkpoint
 from .state import StateLayout
 
 
@@ -245,6 +246,8 @@ class _Loop:
         for name in self.problem.subdomains:
             row[f"back_{name}"] = self.seconds[f"back_{name}"]
         self.history.append(row)
+        if len(self.history) == 3:
+            checkpoint("iterating")
         if self.progress is not None:
             self.progress(row, status or "running")
 

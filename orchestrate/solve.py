@@ -29,6 +29,7 @@ from . import freefem
 from .contact import contact_half_width, contact_zones
 from .discretization import discretize
 from .errors import RunFailed  # noqa: F401  (raised here; callers import it from here too)
+from .faults import checkpoint
 from .folders import RunFolder, WorkFolder
 from .labels import LABELS
 from .outputs import read_reactions, write_csv, write_history, write_json, write_shell_fields
@@ -57,6 +58,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
         files = write_inputs(problem, workdir)
         with start_subdomains(problem, settings, files, workdir, scratch) as subdomains:
             setup_seconds = time.perf_counter() - start
+            checkpoint("setup")
             loop = run_robin_loop(subdomains.solve, problem, settings, progress)
             if loop.converged:
                 reached = zone_end_reached(problem, loop.psi)
@@ -87,6 +89,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
             summary.update(_write_results(problem, loop, scratch))
         summary["wall_time_s"] = time.perf_counter() - start
         write_json(os.path.join(scratch, "summary.json"), summary)
+        checkpoint("committing")
         folder.commit()
     if not loop.converged:
         raise RunFailed(summary)

@@ -10,6 +10,7 @@ import os
 import time
 
 from .errors import system_failure
+from .faults import checkpoint
 from .exchange import parse_reply, reply_count, request_arrays, write_sides
 from .mesh import body_mesh, coating_mesh, write_medit
 from .outputs import check_written
@@ -20,6 +21,13 @@ from .worker import CMD_OUTPUT, CMD_SOLVE, Worker
 def write_inputs(problem, workdir):
     """Meshes, shell nodes and sides files of every subdomain, in ``workdir``; returns
     {name: {"mesh" or "nodes": path, "sides": path}}."""
+    try:
+        return _write_inputs(problem, workdir)
+    except OSError as error:
+        raise system_failure(error, "writing the meshes and interface files") from None
+
+
+def _write_inputs(problem, workdir):
     files = {}
     for name, subdomain in problem.subdomains.items():
         files[name] = {"sides": os.path.join(workdir, f"{name}.sides")}
@@ -123,6 +131,7 @@ class Subdomains:
         output prefix, and check that every file is whole."""
         for worker in self.workers.values():
             worker.send(CMD_OUTPUT)
+        checkpoint("output")
         for name, worker in self.workers.items():
             written, = worker.receive_arrays(1)
             check_written(self.output_prefix[name], self.problem.subdomains[name].kind, written)

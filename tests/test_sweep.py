@@ -179,3 +179,73 @@ def test_a_bad_dotted_key_is_refused_before_any_run(tmp_path):
     path.write_text('[grid]\n"indenter.colour" = [1.0]\n')
     with pytest.raises(ParameterError, match="indenter.colour"):
         load_sweep(path)
+
+
+# ---- a sweep owns its folder; dying workers cost only their run -----------------------
+
+FOUR = '[grid]\nh2 = [0.25, 0.125]\nE2 = [1.0, 5.0]\n[fixed]\neps_u = 1e-4\n'
+
+
+def _sweep_command(path, out, *extra):
+    return [sys.executable, "-m", "orchestrate", "sweep", str(path), "--out", str(out), *extra]
+
+
+@pytest.mark.parametrize("name", ["../outside", "/absolute", "", ".hidden", "a/b"])
+def test_a_name_that_leaves_results_is_refused(tmp_path, name):
+    path = tmp_path / "named.toml"
+    path.write_text(f'name = "{name}"\n[grid]\nh2 = [0.5]\n')
+    with pytest.raises(Exception, match="must be a plain folder name"):
+        load_sweep(path)
+
+
+def test_a_second_sweep_of_one_folder_is_refused_and_foreign_files_stay(tmp_path):
+    path, out = tmp_path / "four.toml", tmp_path / "sweep"
+    path.write_text(FOUR)
+    for name in ("tmp", "scratch"):
+        (out / name).mkdir(parents=True)
+        (out / name / "keep.txt").write_text("mine")
+    (out / "notes.txt").write_text("mine")
+    first = subprocess.Popen(_sweep_command(path, out, "--jobs", "1"), cwd=PROJECT_DIR,
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while not (out / ".sweep.lock").exists() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    second = subprocess.run(_sweep_command(path, out), cwd=PROJECT_DIR, capture_output=True,
+                            text=True, timeout=60)
+    assert second.returncode == 2 and "another sweep is running in it" in second.stderr
+    _, stderr = first.communicate(timeout=300)
+    assert first.returncode == 0, stderr
+    assert sorted(os.listdir(out)) == ["notes.txt", "runs", "runs.csv", "scratch", "tmp"]
+    for name in ("tmp", "scratch"):
+        assert (out / name / "keep.txt").read_text() == "mine"
+
+
+def _children(parent):
+    """PIDs of the live processes whose parent is ``parent``."""
+    children = []
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat") as f:
+                    if int(f.read().rsplit(")", 1)[1].split()[1]) == parent:
+                        children.append(int(entry))
+            except OSError:
+                continue
+    return children
+
+
+def test_a_killed_pool_worker_costs_only_its_run(tmp_path):
+    path, out = tmp_path / "four.toml", tmp_path / "sweep"
+    path.write_text(FOUR)
+    driver = subprocess.Popen(_sweep_command(path, out, "--jobs", "2"), cwd=PROJECT_DIR,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline, busy = time.monotonic() + 60, []
+    while not busy and time.monotonic() < deadline:    # a pool worker running FreeFEM
+        busy = [worker for worker in _children(driver.pid) if _children(worker)]
+        time.sleep(0.05)
+    os.kill(busy[0], signal.SIGKILL)
+    _, stderr = driver.communicate(timeout=300)
+    assert driver.returncode == 0, stderr                # the lost run was run again
+    table = pd.read_csv(out / "runs.csv")
+    assert len(table) == 4 and (table.status == "converged").all()
+    assert _processes_mentioning(str(out)) == []
