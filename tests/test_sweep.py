@@ -249,3 +249,39 @@ def test_a_killed_pool_worker_costs_only_its_run(tmp_path):
     table = pd.read_csv(out / "runs.csv")
     assert len(table) == 4 and (table.status == "converged").all()
     assert _processes_mentioning(str(out)) == []
+
+
+def test_a_killed_dask_worker_costs_only_its_run(tmp_path):
+    path, out = tmp_path / "four.toml", tmp_path / "sweep"
+    path.write_text(FOUR)
+    driver = subprocess.Popen(_sweep_command(path, out, "--engine", "dask", "--jobs", "2"),
+                              cwd=PROJECT_DIR, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                              text=True)
+    deadline, busy = time.monotonic() + 120, []
+    while not busy and time.monotonic() < deadline:    # a Dask worker running FreeFEM
+        busy = [pid for pid in _processes_mentioning("body.edp")
+                if _is_descendant(pid, driver.pid)]
+        time.sleep(0.05)
+    os.kill(_parent(busy[0]), signal.SIGKILL)           # the worker process holding it
+    _, stderr = driver.communicate(timeout=300)
+    assert driver.returncode == 0, stderr
+    table = pd.read_csv(out / "runs.csv")
+    assert len(table) == 4 and (table.status == "converged").all()
+    time.sleep(0.5)
+    assert _processes_mentioning(str(out)) == []
+
+
+def _parent(pid):
+    with open(f"/proc/{pid}/stat") as f:
+        return int(f.read().rsplit(")", 1)[1].split()[1])
+
+
+def _is_descendant(pid, ancestor):
+    try:
+        while pid > 1:
+            pid = _parent(pid)
+            if pid == ancestor:
+                return True
+    except OSError:
+        pass
+    return False
