@@ -36,7 +36,7 @@ results/fig5.png: $(FIG5_RUNS) | setup
 
 scene_word = $(word $(2),$(subst -, ,$(patsubst results/runs/%/summary.json,%,$(1))))
 results/runs/%/summary.json: | setup
-	$(PYTHON) -m orchestrate solve --quiet --out $(@D) \
+	$(PYTHON) -m orchestrate solve --quiet --overwrite --out $(@D) \
 	  --model $(call scene_word,$@,1) \
 	  --h2 $(patsubst h2_%,%,$(call scene_word,$@,2)) \
 	  --E2 $(patsubst E2_%,%,$(call scene_word,$@,3))
@@ -47,7 +47,7 @@ discrete: results/discrete.png
 results/discrete.png: $(DISCRETE_RUNS) | setup
 	$(PYTHON) -m orchestrate.discrete_figure $(DISCRETE_RUNS)
 results/discrete/%/summary.json: orchestrate/scenes/discrete.toml | setup
-	$(PYTHON) -m orchestrate solve --quiet --scene $< --model $* --out $(@D)
+	$(PYTHON) -m orchestrate solve --quiet --overwrite --scene $< --model $* --out $(@D)
 
 setup: .venv/.installed .freefem-installed
 
@@ -68,7 +68,7 @@ setup: .venv/.installed .freefem-installed
 	@touch $@
 
 run: setup
-	$(PYTHON) -m orchestrate solve --model shell --h2 0.125 --E2 1 --out results/default
+	$(PYTHON) -m orchestrate solve --overwrite --model shell --h2 0.125 --E2 1 --out results/default
 	$(PYTHON) -m orchestrate plot results/default
 
 test: setup

@@ -128,7 +128,7 @@ def check_points(points, scene_dir="."):
             scene, settings = point_scene(values, scene_dir)
             check_compatible(scene, settings)
             check_size(discretize(scene, settings))
-        except ParameterError as error:
+        except (ParameterError, TypeError, ValueError) as error:
             problems.append(f"point {number} {values}: {error}")
     if problems:
         shown = problems[:10] + ([f"... and {len(problems) - 10} more"] if len(problems) > 10 else [])
@@ -172,6 +172,9 @@ def run_point(values, sweep_dir, scene_dir=".", retry_failed=False):
         pass                                   # solve wrote the report
     except (SystemFailure, ParameterError) as error:
         write_report(folder, {"status": "error", "converged": False, "reason": str(error)})
+    except Exception as error:                 # a bug: this run's row, not the sweep's end
+        write_report(folder, {"status": "error", "converged": False,
+                              "reason": f"internal error: {type(error).__name__}: {error}"})
     return identifier
 
 
