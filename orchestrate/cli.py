@@ -117,24 +117,38 @@ def build_parser():
 
 
 def _stop_on_signals():
-    """Turn SIGINT and SIGTERM into Interrupted, so that clean-up runs for both and the
-    exit status tells them apart."""
+    """Turn SIGINT, SIGTERM, SIGHUP and SIGQUIT into Interrupted, so that clean-up runs
+    for each and the exit status tells them apart; once cleaning up, further signals
+    wait (a second Ctrl-C must not cut the clean-up short). A closed output pipe is an
+    error of the print, not a reason to die (SIGPIPE ignored)."""
     def handler(signum, frame):
+        for held in EXIT_INTERRUPTED:
+            signal.signal(held, signal.SIG_IGN)
         raise Interrupted(signum)
     for signum in EXIT_INTERRUPTED:
         signal.signal(signum, handler)
+    signal.signal(signal.SIGPIPE, signal.SIG_IGN)
 
 
 def _interrupted(error):
     signum = getattr(error, "signum", signal.SIGINT)
-    print("interrupted" if signum == signal.SIGINT else "terminated", file=sys.stderr)
+    print("interrupted" if signum == signal.SIGINT
+          else f"terminated ({signal.Signals(signum).name})", file=sys.stderr)
     return EXIT_INTERRUPTED[signum]
 
 
 def _progress(row, status):
     if row["iteration"] % 50 == 0 or status != "running":
-        print(f"iteration {row['iteration']:5d}  relative change {row['relative_change']:.3e}"
-              f"  active points {row['active_points']:4d}  {row['seconds']:.2f} s", flush=True)
+        _say(f"iteration {row['iteration']:5d}  relative change {row['relative_change']:.3e}"
+             f"  active points {row['active_points']:4d}  {row['seconds']:.2f} s")
+
+
+def _say(text):
+    """Print to stdout; a closed stdout does not stop the run."""
+    try:
+        print(text, flush=True)
+    except OSError:
+        pass
 
 
 def _sweep(args):
@@ -205,8 +219,8 @@ def _solve(args):
         print(f"failed: {error}", file=sys.stderr)
         return EXIT_FAILED
     descent = (f", descent {summary['descent']:.4e}" if scene.load.force is not None else "")
-    print(f"converged in {summary['iterations']} iterations, {summary['wall_time_s']:.1f} s; "
-          f"contact force {summary['total_force']:.4e}{descent}, contact zones "
-          + ", ".join(f"[{a:.3f}, {b:.3f}]" for a, b in summary["contact_zones"])
-          + f"; results in {args.out}")
+    _say(f"converged in {summary['iterations']} iterations, {summary['wall_time_s']:.1f} s; "
+         f"contact force {summary['total_force']:.4e}{descent}, contact zones "
+         + ", ".join(f"[{a:.3f}, {b:.3f}]" for a, b in summary["contact_zones"])
+         + f"; results in {args.out}")
     return EXIT_CONVERGED

@@ -7,14 +7,16 @@
     3    failed: a worker died or hung, a file could not be written (disk full, file size
          limit, permission), or a system resource ran out
     4    an internal error (a bug), with its traceback
-    130  interrupted by Ctrl-C (SIGINT);  143  terminated (SIGTERM)
+    130  interrupted by Ctrl-C (SIGINT); 143 terminated (SIGTERM); 129 hung up (SIGHUP);
+         131 quit (SIGQUIT)
 """
 
 import errno
 import signal
 
 EXIT_CONVERGED, EXIT_NOT_CONVERGED, EXIT_REFUSED, EXIT_FAILED, EXIT_INTERNAL = 0, 1, 2, 3, 4
-EXIT_INTERRUPTED = {signal.SIGINT: 130, signal.SIGTERM: 143}
+EXIT_INTERRUPTED = {signal.SIGINT: 130, signal.SIGTERM: 143, signal.SIGHUP: 129,
+                    signal.SIGQUIT: 131}
 
 
 class ParameterError(ValueError):
@@ -43,7 +45,8 @@ class SystemFailure(RuntimeError):
 
 
 class Interrupted(KeyboardInterrupt):
-    """A signal asked the run to stop (SIGINT or SIGTERM); clean-up runs as for Ctrl-C."""
+    """A signal asked the run to stop (SIGINT, SIGTERM, SIGHUP, SIGQUIT); clean-up runs
+    as for Ctrl-C."""
 
     def __init__(self, signum):
         super().__init__(f"signal {signum}")

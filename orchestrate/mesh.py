@@ -309,13 +309,14 @@ def _mirrored(mesh):
 @contextmanager
 def _gmsh_session():
     """gmsh initialised for one model. gmsh installs its own C-level signal handlers
-    while it works; SIGINT and SIGTERM are held back meanwhile (blocked: they wait,
+    while it works; the signals that stop a run are held back meanwhile (blocked: they wait,
     pending) and the driver's handlers put back before they are let through, so that a
     signal during meshing stops the run, with its clean-up, once the body is meshed.
     Only the main thread has signal handlers (a Dask worker meshes in another thread)."""
     main_thread = threading.current_thread() is threading.main_thread()
-    held = {signal.SIGINT, signal.SIGTERM}
-    handlers = {sig: signal.getsignal(sig) for sig in held} if main_thread else {}
+    held = {signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT}
+    handlers = ({sig: signal.getsignal(sig) for sig in held | {signal.SIGPIPE}}
+                if main_thread else {})
     if main_thread:
         signal.pthread_sigmask(signal.SIG_BLOCK, held)
     gmsh.initialize(interruptible=False)

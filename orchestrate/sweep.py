@@ -199,11 +199,11 @@ def write_report(folder, report):
         run.commit()
 
 
-def _worker_init():
+def _worker_init(driver):
     """Local worker processes die with the driver (and their FreeFEM workers with them)."""
     from .worker import die_with_parent
 
-    die_with_parent()
+    die_with_parent(driver)
 
 
 # ---- the table ------------------------------------------------------------------------
@@ -304,7 +304,8 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False)
     queue, attempts = list(pending), {}
     while queue:
         pool = concurrent.futures.ProcessPoolExecutor(max_workers=jobs, mp_context=context,
-                                                      initializer=_worker_init)
+                                                      initializer=_worker_init,
+                                                      initargs=(os.getpid(),))
         running = {}
         try:
             while queue or running:
@@ -321,6 +322,7 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False)
                     progress.update(done=1, failed=_failed(sweep_dir, values),
                                     running=len(running) + min(len(queue), jobs - len(running)))
         except concurrent.futures.process.BrokenProcessPool:
+            _kill_pool(pool)                  # the others too: their runs are tried again
             for values in running.values():
                 if attempts[point_id(values)] < ATTEMPTS:
                     queue.insert(0, values)
@@ -339,8 +341,13 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False)
 
 
 def _kill_pool(pool):
-    for process in list((getattr(pool, "_processes", None) or {}).values()):
-        process.kill()                                # their FreeFEM workers die with them
+    """Kill the pool's processes (their FreeFEM workers die with them) and wait for them:
+    a dead process's locks are free, and what its run left can go."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    for process in processes:
+        process.kill()
+    for process in processes:
+        process.join(timeout=10)
     pool.shutdown(wait=False, cancel_futures=True)
 
 
@@ -416,6 +423,7 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
         finally:
             progress.close()
             remove_dead_run_leftovers(sweep_dir / "runs")  # of runs whose process died
+            remove_dead_work_folders()
             table = write_table(sweep_dir, unique)
     finally:
         release_lock(lock)

@@ -9,6 +9,7 @@ the end of its log.
 """
 
 import ctypes
+import functools
 import os
 import select
 import signal
@@ -35,13 +36,17 @@ class WorkerError(SystemFailure):
     """A worker died, timed out or answered something unexpected."""
 
 
-def die_with_parent():
-    """Runs in the child before exec: get SIGKILL if the driver dies, even by SIGKILL."""
+def die_with_parent(parent=None):
+    """Runs in the child (before exec): get SIGKILL when the parent dies, even by
+    SIGKILL. ``parent``: the pid the child was made by; a parent that died before the
+    request took effect is caught by looking again (the kernel's known race)."""
     PR_SET_PDEATHSIG = 1
     try:
         ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
     except OSError:
         pass
+    if parent is not None and os.getppid() != parent:
+        os._exit(1)
 
 
 class Worker:
@@ -68,7 +73,7 @@ class Worker:
                 self.process = subprocess.Popen(
                     command, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
                     env=freefem.environment(), start_new_session=True,
-                    preexec_fn=die_with_parent)
+                    preexec_fn=functools.partial(die_with_parent, os.getpid()))
         except BaseException:
             self.kill()
             raise

@@ -228,3 +228,37 @@ def test_an_unwritable_output_is_refused_before_any_work(tmp_path):
     assert run.finish() == 2 and "is a file" in run.stderr
     assert time.monotonic() - start < 10
     assert list(run.tmp.iterdir()) == [] and target.read_text() == ""
+
+
+@pytest.mark.parametrize("signum, code", [(signal.SIGHUP, 129), (signal.SIGQUIT, 131)],
+                         ids=["SIGHUP", "SIGQUIT"])
+def test_a_hang_up_or_quit_stops_the_run_cleanly(tmp_path, signum, code):
+    run = Run(tmp_path, pause="iterating")
+    run.wait_paused()
+    run.process.send_signal(signum)
+    assert run.finish() == code, run.stderr
+    run.assert_clean(completed=False)
+
+
+def test_a_second_ctrl_c_does_not_cut_the_clean_up_short(tmp_path):
+    run = Run(tmp_path, pause="iterating")
+    run.wait_paused()
+    run.process.send_signal(signal.SIGINT)
+    time.sleep(0.05)
+    run.process.send_signal(signal.SIGINT)
+    assert run.finish() == 130, run.stderr
+    run.assert_clean(completed=False)
+
+
+def test_a_closed_stdout_does_not_stop_the_run(tmp_path):
+    reader, writer = os.pipe()
+    os.close(reader)
+    env = dict(os.environ, TMPDIR=str(tmp_path))
+    out = tmp_path / "run"
+    process = subprocess.run([sys.executable, "-m", "orchestrate", "solve", "--out", str(out),
+                              "--eps-u", "1e-4"], cwd=PROJECT_DIR, env=env, stdout=writer,
+                             stderr=subprocess.PIPE, text=True, timeout=120)
+    os.close(writer)
+    assert process.returncode == 0, process.stderr
+    assert_complete(out)
+    assert [p.name for p in tmp_path.iterdir()] == ["run"]
