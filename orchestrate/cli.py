@@ -24,6 +24,15 @@ from .freefem import FreeFemMissing
 from .scene import METHODS, MODELS, WORKERS, Settings
 from .scene_file import SHORTHANDS, scene_and_settings
 
+EXIT_STATUSES = """exit status:
+  0    converged
+  1    not converged (the report is in OUT/summary.json)
+  2    refused before any work: bad input, a problem too large, a missing FreeFEM,
+       an output folder that is not free
+  3    failed: a worker or a file (disk full, file size limit, permission), named
+  4    internal error (a bug)
+  130, 143, 129, 131   interrupted by SIGINT, SIGTERM, SIGHUP, SIGQUIT"""
+
 _SETTINGS_HELP = {
     "theta": "penalty parameter (b/E)",
     "method": "Robin loop: accelerated active-set loop, or the paper's fixed relaxation",
@@ -88,7 +97,8 @@ def build_parser():
     solve = commands.add_parser(
         "solve", help="solve one scene and write its results into a folder",
         description="Solve one scene. Lengths in b, moduli in E. Writes contact.csv, "
-                    "interface.csv, history.csv, summary.json and VTU fields into --out.")
+                    "interface.csv, history.csv, summary.json and VTU fields into --out.",
+        epilog=EXIT_STATUSES, formatter_class=argparse.RawDescriptionHelpFormatter)
     solve.add_argument("--out", required=True, help="output folder (made whole at the end)")
     solve.add_argument("--overwrite", action="store_true",
                        help="replace an earlier run's output folder whole")
@@ -99,7 +109,9 @@ def build_parser():
         "sweep", help="run a parameter sweep (a TOML file) into results/<name>/",
         description="Run every point of a sweep file (orchestrate/sweep.py explains the "
                     "format); finished runs are skipped, so an interrupted sweep resumes. "
-                    "Writes one folder per run and runs.csv, one row per run.")
+                    "Writes one folder per run and runs.csv, one row per run.",
+        epilog="exit status: 0 every run converged, 1 some did not, 2 refused before any "
+               "run, 4 an internal error, 130/143 interrupted")
     sweep.add_argument("file", help="sweep file (TOML)")
     sweep.add_argument("--out", help="sweep folder (default results/<name>)")
     sweep.add_argument("--engine", choices=("local", "dask"), default="local",
