@@ -230,6 +230,10 @@ def _solve(args):
     except SystemFailure as error:
         print(f"failed: {error}", file=sys.stderr)
         return EXIT_FAILED
+    except MemoryError:
+        print("failed: out of memory (lower --memory-limit's estimate: coarsen the mesh)",
+              file=sys.stderr)
+        return EXIT_FAILED
     descent = (f", descent {summary['descent']:.4e}" if scene.load.force is not None else "")
     _say(f"converged in {summary['iterations']} iterations, {summary['wall_time_s']:.1f} s; "
          f"contact force {summary['total_force']:.4e}{descent}, contact zones "

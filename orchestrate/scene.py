@@ -226,8 +226,12 @@ class Scene:
     contact_zone: Optional[tuple] = None
 
     def __post_init__(self):
+        _require(isinstance(self.coatings, (tuple, list)), "coating",
+                 f"coating = {self.coatings!r} must be a list of patches ([[coating]] tables)")
         object.__setattr__(self, "coatings", tuple(self.coatings))
         if self.contact_zone is not None:
+            _require(isinstance(self.contact_zone, (tuple, list)), "contact_zone",
+                     f"contact_zone = {self.contact_zone!r} must be [x1_start, x1_end]")
             object.__setattr__(self, "contact_zone", tuple(self.contact_zone))
         _require(isinstance(self.symmetric, bool), "symmetric",
                  f"symmetric = {self.symmetric!r} must be true or false")
@@ -363,7 +367,9 @@ class Settings:
         _positive_int("max_iterations", self.max_iterations)
         _positive_int("mesh_level", self.mesh_level)
         _positive("element_size", self.element_size)
-        _positive("worker_timeout", self.worker_timeout)
+        _require(_finite(self.worker_timeout) and self.worker_timeout >= 1, "worker_timeout",
+                 f"worker_timeout = {self.worker_timeout!r} must be at least 1 (seconds): a "
+                 "worker's set-up alone takes a good part of a second")
         if self.memory_limit is not None:
             _positive("memory_limit", self.memory_limit)
 

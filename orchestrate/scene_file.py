@@ -114,6 +114,8 @@ def load_scene(path):
         raise ParameterError(f"scene file {path}: {error.strerror}") from None
     except tomllib.TOMLDecodeError as error:
         raise ParameterError(f"{path}: not a valid TOML file: {error}") from None
+    except UnicodeDecodeError:
+        raise ParameterError(f"{path}: not a valid TOML file: not UTF-8 text") from None
     return scene_from_table(data, path)
 
 
@@ -209,6 +211,10 @@ def apply_overrides(scene, overrides):
         for key, new in changes:
             changed = _set(changed, key, new)
             set_by[key] = name
+    loads = sorted({set_by[key] for key in ("load.force", "load.displacement") if key in set_by})
+    if len(loads) > 1:
+        raise ParameterError(f"{' and '.join(loads)} both set the load: give one, the force "
+                             "or the stamp's descent", "load")
     if changed is scene:
         return scene
     try:

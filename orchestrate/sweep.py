@@ -80,6 +80,8 @@ def load_sweep(path):
         raise ParameterError(f"sweep file {path}: {error.strerror}") from None
     except tomllib.TOMLDecodeError as error:
         raise ParameterError(f"{path}: not a valid TOML file: {error}") from None
+    except UnicodeDecodeError:
+        raise ParameterError(f"{path}: not a valid TOML file: not UTF-8 text") from None
     unknown_sections = set(data) - {"name", "fixed", "grid", "grids", "runs"}
     if unknown_sections:
         raise ParameterError(f"{path}: unknown sweep section(s) {sorted(unknown_sections)} "
