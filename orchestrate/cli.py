@@ -85,6 +85,8 @@ def parse_assignment(text):
         parsed = tomllib.loads(f"value = {value.strip()}")["value"]
     except tomllib.TOMLDecodeError:
         parsed = value.strip()
+    except RecursionError:
+        raise ParameterError(f"--set {key.strip()}: value nested too deeply") from None
     return key.strip(), parsed
 
 

@@ -12,7 +12,7 @@ Two runs into one folder: the lock file ``.NAME.lock`` beside it, held with floc
 the run's life, refuses the second (the kernel drops the lock when its holder dies, even
 by SIGKILL). Holding the lock, a run removes the scratch folders of dead runs into that
 folder. A folder that holds files is refused unless ``overwrite``, and even then only if
-it holds a run (summary.json or history.csv): never an unrelated folder.
+it holds a run (a run's summary.json): never an unrelated folder.
 
 The working folder (WorkFolder): meshes, sides files, FIFOs and worker logs in
 ``robin-XXXX`` under the temporary folder, removed when the run ends however it ends.
@@ -22,6 +22,7 @@ while its run lives, and the next run removes those whose lock is free.
 
 import errno
 import fcntl
+import json
 import os
 import shutil
 import tempfile
@@ -30,13 +31,22 @@ from pathlib import Path
 
 from .errors import ParameterError, system_failure
 
-RUN_MARKERS = ("summary.json", "history.csv")
+NAME_MAX = 255            # bytes in a file name on Linux file systems
 YOUNG_SECONDS = 60        # a working folder without its lock is dead once this old
 
 
 class RunFolder:
     def __init__(self, path, overwrite=False, option="--out"):
+        if os.path.islink(path):            # write where the link points, keep the link
+            if not os.path.isdir(path):
+                raise ParameterError(f"{option} {path} is a symbolic link to no folder",
+                                     option)
+            path = os.path.realpath(path)
         self.path = Path(os.path.abspath(path))
+        if len(self.path.name.encode()) > NAME_MAX - len(".partial-XXXXXXXX."):
+            raise ParameterError(f"{option}: the folder's name is too long (at most "
+                                 f"{NAME_MAX - 18} bytes, for the scratch folder beside it)",
+                                 option)
         self.overwrite = overwrite
         self.option = option
         self.scratch = None
@@ -84,7 +94,7 @@ class RunFolder:
         contents = os.listdir(self.path)
         if not contents:
             return
-        if not any(marker in contents for marker in RUN_MARKERS):
+        if not holds_a_run(self.path):
             raise ParameterError(f"{self.option} {self.path} holds files that are not a run's: "
                                  "choose another folder", self.option)
         if not self.overwrite:
@@ -125,6 +135,16 @@ class RunFolder:
     def __exit__(self, *exc):
         self.discard()
         self.release()
+
+
+def holds_a_run(folder):
+    """Whether FOLDER is a run's output: its summary.json, written last, is a run's."""
+    try:
+        with open(Path(folder) / "summary.json", encoding="utf-8") as f:
+            summary = json.load(f)
+    except (OSError, ValueError):
+        return False
+    return isinstance(summary, dict) and {"scene", "settings", "converged"} <= set(summary)
 
 
 def remove_dead_run_leftovers(directory):

@@ -135,13 +135,16 @@ class LoopResult:
 class ConvergenceMonitor:
     """Stops a loop that diverges or stagnates, and one that hits its iteration limit.
 
-    Diverged: a non-finite value; displacements beyond ``growth_limit`` times the scene's
-    scale (stamp displacement plus largest gap); or a relative change ``growth_limit``
+    Diverged: a non-finite value; displacements (the entries ``displacement_mask`` picks;
+    tractions scale with the moduli and follow the displacements) beyond ``growth_limit``
+    times the scene's scale (stamp displacement plus largest gap); or a relative change ``growth_limit``
     times above the smallest seen since the last ``restart``. Stagnated: no new smallest
     relative change (by 10 %) in ``window`` iterations."""
 
-    def __init__(self, max_iterations, displacement_scale, window, growth_limit=1e3):
+    def __init__(self, max_iterations, displacement_scale, window, growth_limit=1e3,
+                 displacement_mask=None):
         self.max_iterations = max_iterations
+        self.displacement_mask = displacement_mask
         self.displacement_scale = displacement_scale
         self.window = window
         self.growth_limit = growth_limit
@@ -154,9 +157,10 @@ class ConvergenceMonitor:
         """``(status, reason)`` when the loop must stop for failure, else None."""
         if not (np.all(np.isfinite(x)) and math.isfinite(change)):
             return "diverged", f"non-finite values at iteration {iteration}"
-        largest = float(np.max(np.abs(x)))
+        displacements = x if self.displacement_mask is None else x[self.displacement_mask]
+        largest = float(np.max(np.abs(displacements), initial=0.0))
         if largest > self.growth_limit * self.displacement_scale:
-            return "diverged", (f"a displacement or traction reached {largest:.3g}, over "
+            return "diverged", (f"a displacement reached {largest:.3g}, over "
                                 f"{self.growth_limit:g} times the scene's scale "
                                 f"{self.displacement_scale:.3g}, at iteration {iteration}")
         if change > self.growth_limit * self.best_change:
@@ -205,7 +209,8 @@ class _Loop:
         self.layout = StateLayout(problem.interfaces)
         self.gamma = problem.robin
         self.monitor = ConvergenceMonitor(settings.max_iterations, displacement_scale(problem),
-                                          self.window)
+                                          self.window,
+                                          displacement_mask=self.layout.displacement_mask)
         self.history = []
         self.start = time.perf_counter()
         self.descent = None

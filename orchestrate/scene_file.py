@@ -104,18 +104,27 @@ def scene_from_table(data, path=None):
     return scene, settings
 
 
-def load_scene(path):
-    """(Scene, settings values) of a scene file."""
+def read_toml(path, what):
+    """The table of the TOML file PATH (WHAT: "scene file", "sweep file"); any fault in
+    reading or parsing it is refused naming the file."""
     path = Path(path)
     try:
         with open(path, "rb") as f:
-            data = tomllib.load(f)
+            return tomllib.load(f)
     except OSError as error:
-        raise ParameterError(f"scene file {path}: {error.strerror}") from None
+        raise ParameterError(f"{what} {path}: {error.strerror}") from None
     except tomllib.TOMLDecodeError as error:
         raise ParameterError(f"{path}: not a valid TOML file: {error}") from None
     except UnicodeDecodeError:
         raise ParameterError(f"{path}: not a valid TOML file: not UTF-8 text") from None
+    except RecursionError:
+        raise ParameterError(f"{path}: arrays or tables nested too deeply") from None
+
+
+def load_scene(path):
+    """(Scene, settings values) of a scene file."""
+    path = Path(path)
+    data = read_toml(path, "scene file")
     return scene_from_table(data, path)
 
 

@@ -45,7 +45,6 @@ import os
 import re
 import sys
 import time
-import tomllib
 from dataclasses import fields
 from itertools import product
 from pathlib import Path
@@ -58,7 +57,7 @@ from .folders import (RunFolder, hold_lock, release_lock, remove_dead_run_leftov
 from .outputs import write_json
 from .paths import RESULTS_DIR
 from .scene import Settings, check_compatible, scene_from_dict, to_dict
-from .scene_file import is_scene_key, scene_and_settings, shorthand_values
+from .scene_file import is_scene_key, read_toml, scene_and_settings, shorthand_values
 
 SETTINGS_FIELDS = {f.name for f in fields(Settings)}
 NOT_CONVERGED = ("diverged", "stagnated", "max_iterations", "contact_zone")
@@ -73,15 +72,7 @@ def load_sweep(path):
     """(name, points): every point a dict of scene and settings values, in file order.
     A malformed file is refused naming what is wrong."""
     path = Path(path)
-    try:
-        with open(path, "rb") as f:
-            data = tomllib.load(f)
-    except OSError as error:
-        raise ParameterError(f"sweep file {path}: {error.strerror}") from None
-    except tomllib.TOMLDecodeError as error:
-        raise ParameterError(f"{path}: not a valid TOML file: {error}") from None
-    except UnicodeDecodeError:
-        raise ParameterError(f"{path}: not a valid TOML file: not UTF-8 text") from None
+    data = read_toml(path, "sweep file")
     unknown_sections = set(data) - {"name", "fixed", "grid", "grids", "runs"}
     if unknown_sections:
         raise ParameterError(f"{path}: unknown sweep section(s) {sorted(unknown_sections)} "
@@ -142,6 +133,8 @@ def point_scene(values, scene_dir="."):
     """The scene and settings of a point; its scene file is relative to ``scene_dir``."""
     overrides = {k: v for k, v in values.items() if is_scene_key(k)}
     settings = {k: v for k, v in values.items() if k in SETTINGS_FIELDS}
+    if not isinstance(values.get("scene", ""), str):
+        raise ParameterError(f"scene = {values['scene']!r} must be the path of a scene file")
     scene_file = Path(scene_dir) / values["scene"] if "scene" in values else None
     return scene_and_settings(scene_file, overrides, settings)
 
@@ -195,9 +188,10 @@ def run_status(folder):
 
 
 def write_report(folder, report):
-    """A run folder holding only a summary: the report of a run that could not run."""
+    """A run folder holding only a summary: the report of a run that could not run (no
+    scene or settings: the sweep's table fills them in from the point's values)."""
     with RunFolder(folder, overwrite=True, option="run folder") as run:
-        write_json(run.scratch / "summary.json", report)
+        write_json(run.scratch / "summary.json", {"scene": None, "settings": None, **report})
         run.commit()
 
 

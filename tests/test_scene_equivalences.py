@@ -5,7 +5,10 @@
   the full model's own conditions (no symmetry, patches across the axis, free ends on
   both sides) are right;
 - a force-loaded solve and a displacement-loaded solve at the descent it found: the
-  stamp's descent as an unknown is solved right.
+  stamp's descent as an unknown is solved right;
+- every modulus and the force times 1e4 (a scene in MPa rather than in units of E): the
+  same iterations, the same displacements, stresses times 1e4 (to 1e-9): nothing in the
+  loop (penalty, Robin parameter, stopping and divergence tests) depends on the unit.
 """
 
 import numpy as np
@@ -58,3 +61,19 @@ def test_a_force_load_and_the_displacement_it_found_agree(tmp_path):
         for column in ("sigma_n", "a_n", "b_n"):
             if column in a:
                 assert _close(a[column].to_numpy(), b[column].to_numpy()), (name, column)
+
+
+def test_moduli_in_other_units_give_the_same_loop(tmp_path):
+    scene, _ = load_scene(SCENES_DIR / "cylinder.toml")
+    unit = 1e4
+    scaled = apply_overrides(scene, {"indenter.E": unit * scene.indenter.E,
+                                     "base.E": unit * scene.base.E,
+                                     "coating.E": unit * scene.coatings[0].E,
+                                     "load.force": unit * scene.load.force})
+    one = solve(scene, Settings(), tmp_path / "one")
+    other = solve(scaled, Settings(), tmp_path / "other")
+    assert other["converged"] and other["iterations"] == one["iterations"]
+    assert abs(other["descent"] / one["descent"] - 1) < 1e-9
+    a = pd.read_csv(tmp_path / "one" / "contact.csv")
+    b = pd.read_csv(tmp_path / "other" / "contact.csv")
+    assert float(np.max(np.abs(b.sigma_n / unit - a.sigma_n)) / np.max(np.abs(a.sigma_n))) < 1e-9
