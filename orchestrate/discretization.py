@@ -35,7 +35,7 @@ import numpy as np
 
 from .body_plans import base_plan, indenter_plan
 from .geometry import IndenterFace, base_face, lowest_point
-from .scene import ParameterError
+from .scene import SHELL_MODELS, ParameterError
 
 # The 2D coating: one layer of cells per b/8 of height, as the paper's 64 ... 512
 # triangles for h2 = b/8 ... b, and at least one; a cell at most MAX_ASPECT times as
@@ -51,7 +51,8 @@ class Side:
     body:  ``place`` (n, 2) points of its mesh; ``coefficients`` one (n, 2) array per
            component: trace = c1 u1 + c2 u2 there.
     shell: ``place`` (n,) arc lengths xi along its mid-line; ``coefficients`` one (n, 3)
-           array per component: trace = cV v + cW w + cG gamma there."""
+           array per component: trace = cV v + cW w + cG gamma there, or (n, 4) with
+           + cE epsilon for a shell with thickness stretch."""
     subdomain: str
     place: np.ndarray
     coefficients: tuple
@@ -97,11 +98,13 @@ class CoatingPlan:
 @dataclass(frozen=True)
 class ShellSpec:
     """A coating patch as a shell on its mid-line: nodes xi (arc length from its start),
-    constant curvature, its start on the symmetry axis of a half model or free."""
+    constant curvature, with or without thickness stretch (the fibre's transverse strain
+    epsilon), its start on the symmetry axis of a half model or free."""
     nodes: np.ndarray
     curvature: float
     thickness: float
     shear_factor: float
+    thickness_stretch: bool
     symmetric_start: bool
     face: object
     s_start: float             # arc length on the base's face of the patch's start
@@ -275,11 +278,11 @@ def discretize(scene, settings):
         indenter_place = _indenter_place(touching, scene.indenter, lowest)
         _check_under_indenter(scene, indenter_place)
         partner = f"coating{number}" if number is not None else "base"
-        if number is not None and scene.coatings[number - 1].model == "shell":
+        if number is not None and scene.coatings[number - 1].model in SHELL_MODELS:
             coating = scene.coatings[number - 1]
             spec_stretch = face.stretch(0.5 * coating.thickness)
-            partner_side = Side(partner, (s - nodes[0]) * spec_stretch,
-                                (_shell_coefficients(len(s), 0.0, 1.0, 0.0),))
+            partner_side = Side(partner, (s - nodes[0]) * spec_stretch, (  # the top face's w
+                _shell_coefficients(len(s), coating, 0.0, 1.0, 0.0, 0.5),))
         else:
             partner_side = Side(partner, chord_points(position), (normal.copy(),))
         indenter_side = Side("indenter", indenter_place, (-normal,))
@@ -295,15 +298,16 @@ def discretize(scene, settings):
         normal, tangent = face.normal(s), face.tangent(s)
         name = f"coating{number}"
         on_axis = scene.symmetric and nodes[0] == 0.0
-        if coating.model == "shell":
+        if coating.model in SHELL_MODELS:
             stretch = face.stretch(0.5 * coating.thickness)
             spec = ShellSpec((nodes - nodes[0]) * stretch, face.curvature / stretch,
-                             coating.thickness, coating.shear_factor, on_axis, face,
+                             coating.thickness, coating.shear_factor,
+                             coating.model == "stretch_shell", on_axis, face,
                              float(nodes[0]), stretch)
             n = len(s)
-            coating_side = Side(name, (s - nodes[0]) * stretch, (
-                _shell_coefficients(n, 1.0, 0.0, -0.5 * coating.thickness),
-                _shell_coefficients(n, 0.0, 1.0, 0.0)))
+            coating_side = Side(name, (s - nodes[0]) * stretch, (   # the bottom face's v, w
+                _shell_coefficients(n, coating, 1.0, 0.0, -0.5 * coating.thickness, 0.0),
+                _shell_coefficients(n, coating, 0.0, 1.0, 0.0, -0.5)))
             subdomains[name] = Subdomain(name, "shell", coating.E, coating.nu, spec)
         else:
             plan = CoatingPlan(face, nodes, coating.thickness, coating_layers(coating, level),
@@ -329,8 +333,14 @@ def discretize(scene, settings):
                    settings.theta / scene.modulus, settings.robin_parameter * scene.modulus)
 
 
-def _shell_coefficients(n, c_v, c_w, c_gamma):
-    return np.tile([c_v, c_w, c_gamma], (n, 1)).astype(float)
+def _shell_coefficients(n, coating, c_v, c_w, c_gamma, face):
+    """Trace coefficients of a shell's face at n points: cV v + cW w + cG gamma, and with
+    thickness stretch + cE epsilon, cE = face h2 c_w (face = +1/2 top, -1/2 bottom): the
+    face xi3 = face h2 moves along the normal by w + xi3 epsilon."""
+    row = [c_v, c_w, c_gamma]
+    if coating.model == "stretch_shell":
+        row.append(face * coating.thickness * c_w)
+    return np.tile(row, (n, 1)).astype(float)
 
 
 def _contact_range(scene, face):

@@ -102,9 +102,9 @@ def read_reactions(path):
 
 
 def write_shell_fields(fields_csv, spec, vtu_path):
-    """Complete a shell worker's fields file (xi, v, w, gamma, T11, T13, M11 along the
-    mid-line) with the mid-line's place x1, x2, and write it as a VTU polyline with the
-    displacement v t + w n in global components, gamma and the forces."""
+    """Complete a shell worker's fields file (xi, v, w, gamma, epsilon, T11, T13, M11, T33
+    along the mid-line) with the mid-line's place x1, x2, and write it as a VTU polyline
+    with the displacement v t + w n in global components, gamma, epsilon and the forces."""
     data = pd.read_csv(fields_csv)
     s = spec.s_start + data["xi"].to_numpy() / spec.stretch
     place = spec.face.point(s, 0.5 * spec.thickness)
@@ -117,7 +117,7 @@ def write_shell_fields(fields_csv, spec, vtu_path):
     lines = np.column_stack([np.arange(len(data) - 1), np.arange(1, len(data))])
     keep = np.diff(data["xi"].to_numpy()) > 0   # samples repeat the nodes: skip zero-length cells
     point_data = {"displacement": np.column_stack([displacement, np.zeros(len(data))])}
-    for name in ("gamma", "T11", "T13", "M11"):
+    for name in ("gamma", "epsilon", "T11", "T13", "M11", "T33"):
         point_data[name] = data[name].to_numpy()
     mesh = meshio.Mesh(points, [("line", lines[keep])], point_data=point_data)
     _written(vtu_path, lambda partial: meshio.write(partial, mesh, file_format="vtu"))

@@ -24,7 +24,8 @@ from typing import Optional
 
 from .errors import ParameterError
 
-MODELS = ("shell", "elastic")
+MODELS = ("shell", "stretch_shell", "elastic")
+SHELL_MODELS = ("shell", "stretch_shell")   # the coating on its mid-line
 THETA_RANGE = (1e-6, 1.0)      # the penalty, b/E
 ROBIN_RANGE = (1e-3, 1e3)      # the Robin parameter, E/b
 MODULUS_RATIO = 1e6            # the largest over the smallest modulus of a scene
@@ -173,7 +174,8 @@ class Coating:
     thickness: float = 0.125
     E: float = 1.0
     nu: float = 0.3
-    model: str = "shell"           # "shell" (Timoshenko-type) or "elastic" (2D)
+    model: str = "shell"           # "shell" (Timoshenko-type, the paper's), "stretch_shell"
+                                   # (the same with thickness stretch) or "elastic" (2D)
     shear_factor: float = 5.0 / 6.0  # k' of the shell
 
     def check(self, prefix):

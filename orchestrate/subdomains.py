@@ -47,10 +47,10 @@ def _write_inputs(problem, workdir):
 
 def shell_numbers(subdomain):
     """A shell's numbers as its FreeFEM scripts take them: E, nu, h2, k', curvature,
-    whether its start is on the symmetry axis."""
+    whether it has thickness stretch, whether its start is on the symmetry axis."""
     plan = subdomain.plan
     return [subdomain.E, subdomain.nu, plan.thickness, plan.shear_factor, plan.curvature,
-            int(plan.symmetric_start)]
+            int(plan.thickness_stretch), int(plan.symmetric_start)]
 
 
 def worker_arguments(subdomain, files):
@@ -58,9 +58,10 @@ def worker_arguments(subdomain, files):
     if subdomain.kind == "body":
         return ["-mesh", files["mesh"], "-E", subdomain.E, "-nu", subdomain.nu,
                 "-sides", files["sides"]]
-    E, nu, h2, kshear, curvature, symmetric = shell_numbers(subdomain)
+    E, nu, h2, kshear, curvature, thickness_stretch, symmetric = shell_numbers(subdomain)
     return ["-nodes", files["nodes"], "-E", E, "-nu", nu, "-h2", h2, "-kshear", kshear,
-            "-curvature", curvature, "-symmetric", symmetric, "-sides", files["sides"]]
+            "-curvature", curvature, "-stretch", thickness_stretch, "-symmetric", symmetric,
+            "-sides", files["sides"]]
 
 
 def load_arguments(problem):

@@ -62,7 +62,7 @@ from .scene_file import is_scene_key, read_toml, scene_and_settings, shorthand_v
 SETTINGS_FIELDS = {f.name for f in fields(Settings)}
 NOT_CONVERGED = ("diverged", "stagnated", "max_iterations", "contact_zone")
 FAILED = NOT_CONVERGED + ("error",)
-NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]*")      # fullmatch: no trailing newline
 ATTEMPTS = 2           # a run whose worker process dies is tried this often
 
 
@@ -78,16 +78,18 @@ def load_sweep(path):
         raise ParameterError(f"{path}: unknown sweep section(s) {sorted(unknown_sections)} "
                              "(allowed: name, fixed, grid, grids, runs)")
     name = data.get("name", path.stem)
-    if not isinstance(name, str) or not NAME.match(name):
+    if not isinstance(name, str) or not NAME.fullmatch(name):
         raise ParameterError(f"{path}: name = {name!r} must be a plain folder name (letters, "
                              "digits, _ . -, not starting with . or -): the sweep's folder is "
                              "results/<name>")
     fixed = data.get("fixed", {})
-    grids = ([data["grid"]] if "grid" in data else []) + data.get("grids", [])
+    grids = data.get("grids", [])
     singles = data.get("runs", [])
-    for where, tables in (("fixed", [fixed]), ("grid", grids), ("runs", singles)):
+    for where, tables in (("fixed", [fixed]), ("grid", [data.get("grid", {})]),
+                          ("grids", grids), ("runs", singles)):
         if not isinstance(tables, list) or not all(isinstance(t, dict) for t in tables):
             raise ParameterError(f"{path}: [{where}] must be a table (or [[{where}]] tables)")
+    grids = ([data["grid"]] if "grid" in data else []) + grids
     for table in (fixed, *grids, *singles):
         unknown = {key for key in table if key not in SETTINGS_FIELDS and key != "scene"
                    and not is_scene_key(key)}

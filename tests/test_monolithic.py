@@ -5,7 +5,7 @@ freefem/monolithic.edp builds every subdomain with the workers' own includes, co
 them by the penalty on the same interface points and iterates the contact set to a
 fixed point. Run to a tight tolerance, the domain decomposition must give the same
 interface traces and stresses to 1e-6 relative: the test that the Robin data, the trace
-operators (flat and curved, bodies and shells), the active-set logic and the force
+operators (flat and curved, bodies and shells with and without thickness stretch), the active-set logic and the force
 load are right. Both loops are checked on the paper's scene: the accelerated active-set
 loop at the default penalty, and the paper's own loop (gamma = 1/theta, fixed
 relaxation) at a penalty soft enough for it to converge in a few hundred iterations (at
@@ -53,6 +53,9 @@ CASES = {
     "cylinder on a coated block": (_file("cylinder"), TIGHT),
     "coated roller, shell": (_file("roller"), TIGHT),
     "coated roller, 2D coating": (_file("roller", model="elastic"), TIGHT),
+    "paper, stretch shell, h2 b/2, E2 E/5": (
+        paper_scene(model="stretch_shell", h2=0.5, E2=0.2), TIGHT),
+    "coated roller, stretch shell": (_file("roller", model="stretch_shell"), TIGHT),
     "three patches, shell and 2D": (_file("discrete", **{"coating[2].model": "elastic"}), TIGHT),
     "full model, off-centre": (_off_centre_full_model(), TIGHT),
 }
