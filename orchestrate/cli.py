@@ -200,6 +200,9 @@ def main(argv=None):
         return _solve(args)
     except KeyboardInterrupt as error:
         return _interrupted(error)
+    except MemoryError:
+        print("failed: out of memory", file=sys.stderr)
+        return EXIT_FAILED
     except Exception:                    # a bug: say so, with the traceback
         traceback.print_exc()
         print("internal error: please report it with the traceback above", file=sys.stderr)
@@ -217,9 +220,8 @@ def _plot(args):
 
 
 def _solve(args):
-    from .solve import solve
-
     try:
+        from .solve import solve         # loads gmsh: may fail for want of memory
         scene, settings = scene_from_arguments(args)
         summary = solve(scene, settings, args.out, None if args.quiet else _progress,
                         overwrite=args.overwrite)

@@ -17,7 +17,13 @@ from pathlib import Path
 import signal
 import threading
 
-import gmsh
+from .errors import SystemFailure
+
+try:
+    import gmsh
+except OSError as error:                 # its shared library could not be loaded
+    raise SystemFailure(f"loading gmsh's library failed: {error} (out of memory, e.g. under "
+                        "ulimit -v? or a broken install)") from None
 import meshio
 import numpy as np
 

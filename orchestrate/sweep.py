@@ -63,7 +63,7 @@ SETTINGS_FIELDS = {f.name for f in fields(Settings)}
 NOT_CONVERGED = ("diverged", "stagnated", "max_iterations", "contact_zone")
 FAILED = NOT_CONVERGED + ("error",)
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]*")      # fullmatch: no trailing newline
-ATTEMPTS = 2           # a run whose worker process dies is tried this often
+ATTEMPTS = 2           # a run whose worker process dies when alone is tried this often
 
 
 # ---- the sweep file ---------------------------------------------------------------------
@@ -156,19 +156,21 @@ def run_point(values, sweep_dir, scene_dir=".", retry_failed=False):
     into the run's summary.json (a run that failed outside its numbers, "error", is
     run again; with ``retry_failed`` one that did not converge too)."""
     from .errors import RunFailed, SystemFailure
-    from .solve import solve                   # a worker process imports what it needs
 
     identifier = point_id(values)
     folder = Path(sweep_dir) / "runs" / identifier
     if finished(folder, retry_failed):
         return identifier
     try:
+        from .solve import solve               # a worker process imports what it needs
         scene, settings = point_scene(values, scene_dir)
         solve(scene, settings, folder, overwrite=True)
     except RunFailed:
         pass                                   # solve wrote the report
     except (SystemFailure, ParameterError) as error:
         write_report(folder, {"status": "error", "converged": False, "reason": str(error)})
+    except MemoryError:
+        write_report(folder, {"status": "error", "converged": False, "reason": "out of memory"})
     except Exception as error:                 # a bug: this run's row, not the sweep's end
         write_report(folder, {"status": "error", "converged": False,
                               "reason": f"internal error: {type(error).__name__}: {error}"})
@@ -295,23 +297,32 @@ class Progress:
 # ---- engines --------------------------------------------------------------------------
 
 def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False):
-    """Local worker processes, at most ``jobs`` runs at once. A worker process that dies
-    breaks its pool: the runs it held are tried again in a new one, ATTEMPTS times at
-    most, then recorded as failed."""
+    """Local worker processes, at most ``jobs`` runs at once.
+
+    A worker process that dies breaks its pool, and which of the runs in flight it held
+    is unknown: each of them is tried again alone, in a new pool. A run whose worker
+    dies while it runs alone is to blame: tried ATTEMPTS times so, then recorded as
+    failed. So a dying worker costs only its own run."""
     context = multiprocessing.get_context("spawn")   # no inherited gmsh or threads
-    queue, attempts = list(pending), {}
-    while queue:
+    queue, alone, deaths = list(pending), [], {}
+    while queue or alone:
         pool = concurrent.futures.ProcessPoolExecutor(max_workers=jobs, mp_context=context,
                                                       initializer=_worker_init,
                                                       initargs=(os.getpid(),))
         running = {}
+
+        def submit(source):                    # taken from its list once submitted
+            future = pool.submit(run_point, source[0], str(sweep_dir), str(scene_dir),
+                                 retry_failed)
+            running[future] = source.pop(0)
         try:
-            while queue or running:
-                while queue and len(running) < jobs:
-                    values = queue.pop(0)
-                    attempts[point_id(values)] = attempts.get(point_id(values), 0) + 1
-                    running[pool.submit(run_point, values, str(sweep_dir), str(scene_dir),
-                                        retry_failed)] = values
+            while queue or alone or running:
+                if alone:                      # a suspect runs once the pool is empty
+                    if not running:
+                        submit(alone)
+                else:
+                    while queue and len(running) < jobs:
+                        submit(queue)
                 progress.update(running=len(running))
                 done, _ = concurrent.futures.wait(running, return_when="FIRST_COMPLETED")
                 for future in done:
@@ -321,15 +332,21 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False)
                                     running=len(running) + min(len(queue), jobs - len(running)))
         except concurrent.futures.process.BrokenProcessPool:
             _kill_pool(pool)                  # the others too: their runs are tried again
-            for values in running.values():
-                if attempts[point_id(values)] < ATTEMPTS:
-                    queue.insert(0, values)
+            if len(running) != 1:
+                alone = list(running.values()) + alone
+            else:
+                (values,) = running.values()
+                identifier = point_id(values)
+                deaths[identifier] = deaths.get(identifier, 0) + 1
+                if deaths[identifier] < ATTEMPTS:
+                    alone.insert(0, values)
                 else:
-                    write_report(Path(sweep_dir) / "runs" / point_id(values), {
+                    write_report(Path(sweep_dir) / "runs" / identifier, {
                         "status": "error", "converged": False,
                         "reason": f"the worker process running it died {ATTEMPTS} times "
-                                  "(killed, or out of memory)"})
+                                  "while it ran alone (killed, or out of memory)"})
                     progress.update(done=1, failed=1)
+            running = {}
         finally:
             if running:
                 _kill_pool(pool)

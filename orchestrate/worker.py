@@ -11,6 +11,7 @@ the end of its log.
 import ctypes
 import functools
 import os
+import re
 import select
 import signal
 import subprocess
@@ -30,6 +31,11 @@ _DEATHS = {signal.SIGXFSZ: "a file size limit was reached (ulimit -f)",
            signal.SIGKILL: "killed (by a user, or by the kernel for want of memory)",
            signal.SIGSEGV: "crashed (segmentation fault)",
            signal.SIGABRT: "aborted"}
+
+
+# What a worker's log says when it ran out of memory: MUMPS's error -13 (its factors could
+# not be allocated), C++'s bad_alloc.
+_OUT_OF_MEMORY = re.compile(r"Mumps seq: number -13|INFOG\(1\)= +-13|bad_alloc")
 
 
 class WorkerError(SystemFailure):
@@ -146,7 +152,10 @@ class Worker:
         if code is not None:
             how = (f"died: {_DEATHS.get(-code, signal.Signals(-code).name)}" if code < 0
                    else f"exited with code {code}")
-            raise WorkerError(f"worker {self.name} {how}:\n" + freefem.log_tail(self.log_path))
+            log = freefem.log_tail(self.log_path)
+            if _OUT_OF_MEMORY.search(log):
+                how += " (out of memory: lower --memory-limit's estimate, or coarsen the mesh)"
+            raise WorkerError(f"worker {self.name} {how}:\n" + log)
 
     def _write(self, data, timeout=None):
         deadline = time.monotonic() + (timeout or self.timeout)
