@@ -25,18 +25,24 @@ class Anderson:
     def reset(self):
         self._residuals, self._images = [], []
 
-    def amplification(self):
+    def amplification(self, parts=None):
         """max over the history of ||dx|| / ||dr||, the step between two iterates over
         the change of their residuals: for an affine map with Jacobian J, dr = (J - I) dx,
         so this bounds ||(I - J)^-1|| from below, the factor by which a residual
-        underestimates the distance to the fixed point (1/(1 - q) for a contraction by q)."""
+        underestimates the distance to the fixed point (1/(1 - q) for a contraction by q).
+        With ``parts`` (index arrays), one factor per part: max ||dx_part|| / ||dr||, the
+        part of the distance a residual hides, which for a small part (a bond's shear
+        beside its peel stress) can be far above its share of the whole."""
         if len(self._residuals) < 2:
-            return math.inf
+            return math.inf if parts is None else np.full(len(parts), math.inf)
         residuals, images = np.array(self._residuals), np.array(self._images)
         iterates = images * self.scale - residuals            # scaled x = g - r
         d_r, d_x = np.diff(residuals, axis=0), np.diff(iterates, axis=0)
-        ratios = np.linalg.norm(d_x, axis=1) / np.maximum(np.linalg.norm(d_r, axis=1), 1e-300)
-        return float(np.max(ratios))
+        d_r_norm = np.maximum(np.linalg.norm(d_r, axis=1), 1e-300)
+        if parts is None:
+            return float(np.max(np.linalg.norm(d_x, axis=1) / d_r_norm))
+        return np.array([np.max(np.linalg.norm(d_x[:, part], axis=1) / d_r_norm)
+                         for part in parts])
 
     @property
     def secants(self):

@@ -117,3 +117,22 @@ class StateLayout:
     def norms(self, x):
         """(displacement norm, traction norm)."""
         return self.displacement_norm(x), self.traction_norm(x)
+
+    @cached_property
+    def traction_components(self):
+        """Index arrays of the tractions, one per interface, side and component (a
+        contact's normal one; a bond's tangential and normal ones): the quantities a user
+        reads apart, e.g. a bond's shear next to its peel stress."""
+        groups = []
+        for (kind, i, side), where in self.slices.items():
+            if kind == "t":
+                size = self.interfaces[i].size
+                groups += [np.arange(where.start + c * size, where.start + (c + 1) * size)
+                           for c in range(self.interfaces[i].components)]
+        return groups
+
+    def component_norms(self, x):
+        """Discrete L2 norm of every traction component (traction_components)."""
+        weight = self.entry_weight
+        return np.array([np.sqrt(np.dot(weight[g], np.square(x[g])))
+                         for g in self.traction_components])
