@@ -29,6 +29,7 @@ SHELL_MODELS = ("shell", "stretch_shell")   # the coating on its mid-line
 THETA_RANGE = (1e-6, 1.0)      # the penalty, b/E
 ROBIN_RANGE = (1e-3, 1e3)      # the Robin parameter, E/b
 MODULUS_RATIO = 1e6            # the largest over the smallest modulus of a scene
+MODULUS_RANGE = (1e-20, 1e20)  # any unit of stress; beyond, squares and penalties overflow
 SMALLEST_LOAD = 1e-12          # a descent in b, a force in E b: below, results underflow
 PROFILES = ("circle", "parabola")
 FACE_MESHES = ("shaped", "flat")
@@ -297,6 +298,11 @@ class Scene:
                  "smaller descents underflow")
         moduli = {"indenter.E": self.indenter.E, "base.E": self.base.E}
         moduli.update((f"coating[{n}].E", c.E) for n, c in enumerate(self.coatings, start=1))
+        for key, modulus in moduli.items():
+            _require(MODULUS_RANGE[0] <= modulus <= MODULUS_RANGE[1], key,
+                     f"{key} = {modulus!r} must lie in [{MODULUS_RANGE[0]:g}, "
+                     f"{MODULUS_RANGE[1]:g}] (any unit of stress does: Pa, MPa, E): beyond, "
+                     "squared stresses and penalties under- or overflow")
         softest, stiffest = min(moduli, key=moduli.get), max(moduli, key=moduli.get)
         _require(moduli[stiffest] <= MODULUS_RATIO * moduli[softest], softest,
                  f"{softest} = {moduli[softest]!r} must be at least {stiffest} / "
