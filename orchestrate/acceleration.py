@@ -49,14 +49,20 @@ class Anderson:
         """Differences of residuals in the history: what the secant model is made of."""
         return max(0, len(self._residuals) - 1)
 
-    def step(self, x, g):
-        """Next iterate from the current iterate x and its image g = G(x)."""
+    def record(self, x, g):
+        """Keep the iterate x and its image g = G(x) in the history (the newest
+        ``memory`` + 1); return the scaled residual."""
         r = (g - x) * self.scale
         self._residuals.append(r)
         self._images.append(g)
         if len(self._residuals) > self.memory + 1:
             self._residuals.pop(0)
             self._images.pop(0)
+        return r
+
+    def step(self, x, g):
+        """Next iterate from the current iterate x and its image g = G(x)."""
+        r = self.record(x, g)
         if len(self._residuals) == 1:
             return x + self.first_relaxation * (g - x)
         d_residuals = np.diff(np.array(self._residuals), axis=0).T   # newest column last

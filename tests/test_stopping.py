@@ -2,16 +2,17 @@
 
 The stopping test (orchestrate/robin.py) bounds the error of the interface displacements
 and tractions by the residual times the amplification the loop has shown; a run at the
-default eps_u = 1e-6 must then be within eps_u of the same scene run to 1e-10, in the
+default eps_u = 1e-6 must then be within eps_u of the same scene run to 1e-9, in the
 contact and the bond stresses (relative L2), also where the loop is slow: a Robin
 parameter 200 times below its best (gamma = 0.01 E/b: the residual alone understates
-the error 1000 times there; measured 3e-7 against the 1e-10 run), and the paper's own
+the error 1000 times there; measured 3e-7 against a run to 1e-10), and the paper's own
 loop (fixed relaxation, soft penalty)."""
 
 import numpy as np
 import pandas as pd
 import pytest
 
+from orchestrate.errors import RunFailed
 from orchestrate.scene import Settings
 from orchestrate.scene_file import paper_scene
 from orchestrate.solve import solve
@@ -29,9 +30,28 @@ def _distance(a, b):
 @pytest.mark.parametrize("settings", list(CASES.values()), ids=list(CASES))
 def test_a_converged_run_is_within_its_tolerance(settings, tmp_path):
     run = solve(paper_scene(), Settings(**settings), tmp_path / "run")
-    solve(paper_scene(), Settings(**settings, eps_u=1e-10), tmp_path / "tight")
+    # 1e-9, not tighter: at gamma = 0.01 the loop's round-off (relative changes ~5e-15)
+    # times its amplification (~1e4) and the margin reaches 1e-10, and it stagnates there
+    solve(paper_scene(), Settings(**settings, eps_u=1e-9), tmp_path / "tight")
     assert run["converged"] and run["error_estimate"] < 1e-6
-    for name in ("contact.csv", "interface.csv"):
-        ours = pd.read_csv(tmp_path / "run" / name).sigma_n.to_numpy()
-        reference = pd.read_csv(tmp_path / "tight" / name).sigma_n.to_numpy()
-        assert _distance(ours, reference) < 1e-6, name
+    for name, column in (("contact.csv", "sigma_n"), ("interface.csv", "sigma_n"),
+                         ("interface.csv", "sigma_t")):   # the bond's shear, apart
+        ours = pd.read_csv(tmp_path / "run" / name)[column].to_numpy()
+        reference = pd.read_csv(tmp_path / "tight" / name)[column].to_numpy()
+        assert _distance(ours, reference) < 1e-6, (name, column)
+
+
+def test_the_papers_loop_is_not_called_converged_far_from_its_answer(tmp_path):
+    """The paper's loop at its own eps_u = 1e-3 and theta = 1e-3 on a soft 2D coating: a
+    contact set that changes every iteration fooled an estimate from the contraction of
+    the last 10 changes, and the run was called converged 42 % off in force. Converged
+    now only if within its tolerance (it hits its iteration limit)."""
+    scene = paper_scene(model="elastic", h2=0.125, E2=0.2)
+    settings = Settings(method="paper", eps_u=1e-3, rho=0.5, max_iterations=3000)
+    try:
+        run = solve(scene, settings, tmp_path / "run")
+    except RunFailed as failure:
+        assert failure.summary["status"] in ("max_iterations", "stagnated", "diverged")
+        return
+    reference = solve(scene, Settings(), tmp_path / "reference")
+    assert abs(run["contact_force"] / reference["contact_force"] - 1) < 1e-3
