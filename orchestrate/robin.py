@@ -114,10 +114,11 @@ ACTIVE_SET_TOLERANCE = 1e-2
 MIN_SECANTS = 3
 
 # The amplification a history shows bounds the true one from below: measured against
-# runs to 1e-10, the errors of the bond shear were up to 2.3 times the estimate (gamma =
-# 0.01, mesh level 2, element size 0.02 b, E2 = 1e-6 E), those of the pressures well
-# below it. The stopping test multiplies the estimate by this margin.
-ESTIMATE_MARGIN = 3.0
+# runs to 1e-8 ... 1e-10, the errors of the bond shear were up to 2.3 times the estimate
+# (gamma = 0.01, mesh level 2, element size 0.02 b) and 3.1 times on a 2D coating of
+# E2 = 1e-6 E; those of the pressures were well below it. The stopping test multiplies
+# the estimate by this margin.
+ESTIMATE_MARGIN = 5.0
 
 # Tractions below TRACTION_FLOOR times gamma ||u|| (the Robin coefficient times the
 # displacements: the tractions' natural scale) count as zero in relative changes; real

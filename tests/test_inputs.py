@@ -39,7 +39,7 @@ def test_chi_is_refused_naming_itself():
     ({"rho": 0.0}, "rho"), ({"rho": 1.5}, "rho"), ({"rho": -0.5}, "rho"),
     ({"theta": 0.0}, "theta"), ({"theta": -1e-3}, "theta"),
     ({"mesh_level": 0}, "mesh_level"), ({"mesh_level": 1.5}, "mesh_level"),
-    ({"mesh_level": True}, "mesh_level"), ({"eps_u": 0.0}, "eps_u"),
+    ({"mesh_level": True}, "mesh_level"), ({"eps_u": 0.0}, "eps_u"), ({"eps_u": 1e-2}, "eps_u"),
     ({"max_iterations": 0}, "max_iterations"),
     ({"method": "fast"}, "method"), ({"robin": -1.0}, "robin"),
     ({"robin": 2.0, "theta": 1.0}, "robin"), ({"workers": "threads"}, "workers"),
