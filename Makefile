@@ -82,7 +82,7 @@ bench: setup
 # Where each method fails: a sweep of 102 runs (resumable), then its maps and charts
 # (results/stability/). Errors use the fine references of `make bench` where they exist.
 stability: setup
-	$(PYTHON) -m orchestrate sweep orchestrate/sweeps/stability.toml
+	$(PYTHON) -m orchestrate sweep orchestrate/sweeps/stability.toml || [ $$? -eq 1 ]  # 1: some runs fail, as expected
 	$(PYTHON) -m orchestrate.stability results/stability
 
 clean:
