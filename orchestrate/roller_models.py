@@ -76,7 +76,7 @@ def radius():
 def run(scene, settings, out_dir):
     """solve()'s summary, or the failure's summary (with converged false)."""
     try:
-        return solve(scene, settings, out_dir)
+        return solve(scene, settings, out_dir, overwrite=True)   # its own earlier run
     except RunFailed as failure:
         return failure.summary
 
