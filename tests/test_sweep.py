@@ -3,8 +3,10 @@ resuming after Ctrl-C or a killed driver redoes only the missing runs and ends w
 table of an uninterrupted sweep; the Dask engine gives the same table; no FreeFEM process
 outlives a sweep. Tables are compared in every column but the timings (``*_s``), numbers
 to 1e-9 relative: repeated runs agree to round-off (~1e-13), not bit for bit. The loop's
-residuals (final_relative_change, error_estimate), small differences of large numbers
-below eps_u = 1e-6, agree to round-off in absolute terms (1e-12), not relative."""
+last relative change, a small difference of large numbers below eps_u = 1e-6, agrees to
+round-off in absolute terms (1e-12), not relative; its error estimate, that residual
+times the amplification the history showed (up to 10^3-10^4) and a margin, to 1e-4
+relative (measured: 4e-6)."""
 
 import os
 import signal
@@ -54,8 +56,10 @@ def _same_table(a, b):
     for column in a.columns:
         if column.endswith("_s"):
             continue
-        if column in ("final_relative_change", "error_estimate"):
+        if column == "final_relative_change":
             np.testing.assert_allclose(a[column], b[column], rtol=0, atol=1e-12, err_msg=column)
+        elif column == "error_estimate":
+            np.testing.assert_allclose(a[column], b[column], rtol=1e-4, atol=0, err_msg=column)
         elif pd.api.types.is_float_dtype(a[column]) and pd.api.types.is_float_dtype(b[column]):
             np.testing.assert_allclose(a[column], b[column], rtol=1e-9, atol=0, err_msg=column)
         else:
