@@ -2,11 +2,12 @@
 
 - Pinned: the summary, computed once with the stopping test of the Robin loop that
   bounds the error of the displacements and of each traction component, with a margin
-  (orchestrate/robin.py), to 1e-8. It is within 2e-9 of a run to eps_u = 1e-11. The numbers computed before the scene became
-  a list of subdomains and interfaces (commit f105ec1), which the paper's scene file
-  reproduced to 2e-11, stopped on the displacements' change alone and differ from these
-  by up to 1.6e-5 (the contact half-width; forces 1.5e-6 to 2.9e-6, peaks 4.7e-6), all
-  of it the earlier stopping test's error (they are as far from the eps_u = 1e-11 run).
+  (orchestrate/robin.py), to 1e-8. It is within 2e-9 of a run to eps_u = 1e-11. The
+  numbers computed before the scene became a list of subdomains and interfaces (commit
+  f105ec1), which the paper's scene file reproduced to 2e-11, stopped on the
+  displacements' change alone and differ from these by up to 1.6e-5 (the contact
+  half-width; forces 1.5e-6 to 2.9e-6, peaks 4.7e-6), all of it the earlier stopping
+  test's error (they are as far from the eps_u = 1e-11 run).
 - Equilibrium: the total contact force on S12, the total normal force on S23, the stamp's
   reaction on Omega1 and the clamp's reaction on Omega3 (variationally consistent nodal
   reactions) are one and the same force.
