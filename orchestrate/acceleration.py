@@ -15,34 +15,38 @@ import numpy as np
 
 
 class Anderson:
-    def __init__(self, scale, memory=100, filter_tolerance=1e-10, first_relaxation=1.0):
+    def __init__(self, scale, memory=100, filter_tolerance=1e-10, first_relaxation=1.0,
+                 parts=()):
         self.scale = scale                  # weights making the residual norm meaningful
         self.memory = memory
         self.filter_tolerance = filter_tolerance
         self.first_relaxation = first_relaxation
+        self.parts = parts                  # index arrays: amplification's parts
         self.reset()
 
     def reset(self):
-        self._residuals, self._images = [], []
+        self._residuals, self._images, self._ratios = [], [], []
 
-    def amplification(self, parts=None):
-        """max over the history of ||dx|| / ||dr||, the step between two iterates over
-        the change of their residuals: for an affine map with Jacobian J, dr = (J - I) dx,
-        so this bounds ||(I - J)^-1|| from below, the factor by which a residual
-        underestimates the distance to the fixed point (1/(1 - q) for a contraction by q).
-        With ``parts`` (index arrays), one factor per part: max ||dx_part|| / ||dr||, the
-        part of the distance a residual hides, which for a small part (a bond's shear
-        beside its peel stress) can be far above its share of the whole."""
-        if len(self._residuals) < 2:
-            return math.inf if parts is None else np.full(len(parts), math.inf)
-        residuals, images = np.array(self._residuals), np.array(self._images)
-        iterates = images * self.scale - residuals            # scaled x = g - r
-        d_r, d_x = np.diff(residuals, axis=0), np.diff(iterates, axis=0)
-        d_r_norm = np.maximum(np.linalg.norm(d_r, axis=1), 1e-300)
-        if parts is None:
-            return float(np.max(np.linalg.norm(d_x, axis=1) / d_r_norm))
-        return np.array([np.max(np.linalg.norm(d_x[:, part], axis=1) / d_r_norm)
-                         for part in parts])
+    def amplification(self):
+        """One factor per part (``parts``; the whole state if none): the max over the
+        history of ||dx_part|| / ||dr||, the step between two iterates over the change of
+        their residuals. For an affine map with Jacobian J, dr = (J - I) dx, so for the
+        whole state this bounds ||(I - J)^-1|| from below, the factor by which a residual
+        underestimates the distance to the fixed point (1/(1 - q) for a contraction by
+        q); for a part, the share of that distance a residual hides, which for a small
+        part (a bond's shear beside its peel stress) can be far above its share of the
+        whole. Each pair's ratios are computed once, when it enters the history."""
+        if not self._ratios:
+            return np.full(max(len(self.parts), 1), math.inf)
+        return np.max(self._ratios, axis=0)
+
+    def _pair_ratios(self):
+        """||dx_part|| / ||dr|| of the newest pair of the history."""
+        d_r = self._residuals[-1] - self._residuals[-2]
+        d_x = (self._images[-1] - self._images[-2]) * self.scale - d_r   # scaled x = g - r
+        d_r_norm = max(float(np.linalg.norm(d_r)), 1e-300)
+        parts = self.parts or (slice(None),)
+        return np.array([np.linalg.norm(d_x[part]) for part in parts]) / d_r_norm
 
     @property
     def secants(self):
@@ -55,9 +59,12 @@ class Anderson:
         r = (g - x) * self.scale
         self._residuals.append(r)
         self._images.append(g)
+        if len(self._residuals) > 1:
+            self._ratios.append(self._pair_ratios())
         if len(self._residuals) > self.memory + 1:
             self._residuals.pop(0)
             self._images.pop(0)
+            self._ratios.pop(0)             # the pair of the entry dropped
         return r
 
     def step(self, x, g):

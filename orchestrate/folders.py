@@ -32,6 +32,9 @@ from pathlib import Path
 from .errors import ParameterError, system_failure
 
 NAME_MAX = 255            # bytes in a file name on Linux file systems
+# what the scratch folder's name adds to the output folder's: ".", ".partial-" and
+# tempfile's 8 random characters
+SCRATCH_EXTRA = len(".") + len(".partial-") + 8
 YOUNG_SECONDS = 60        # a working folder without its lock is dead once this old
 
 
@@ -43,10 +46,10 @@ class RunFolder:
                                      option)
             path = os.path.realpath(path)
         self.path = Path(os.path.abspath(path))
-        if len(self.path.name.encode()) > NAME_MAX - len(".partial-XXXXXXXX."):
+        if len(self.path.name.encode()) > NAME_MAX - SCRATCH_EXTRA:
             raise ParameterError(f"{option}: the folder's name is too long (at most "
-                                 f"{NAME_MAX - 18} bytes, for the scratch folder beside it)",
-                                 option)
+                                 f"{NAME_MAX - SCRATCH_EXTRA} bytes, for the scratch folder "
+                                 "beside it)", option)
         self.overwrite = overwrite
         self.option = option
         self.scratch = None

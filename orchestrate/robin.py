@@ -150,8 +150,8 @@ class ConvergenceMonitor:
 
     Diverged: a non-finite value; displacements (the entries ``displacement_mask`` picks;
     tractions scale with the moduli and follow the displacements) beyond ``growth_limit``
-    times the scene's scale (stamp displacement plus largest gap); or a relative change ``growth_limit``
-    times above the smallest seen since the last ``restart``. Stagnated: no new smallest
+    times the scene's scale (stamp displacement plus largest gap); or a relative change
+    ``growth_limit`` times above the smallest seen since the last ``restart``. Stagnated: no new smallest
     relative change (by 10 %) in ``window`` iterations."""
 
     def __init__(self, max_iterations, displacement_scale, window, growth_limit=1e3,
@@ -278,26 +278,37 @@ class _Loop:
         new contact set, so the monitor watches the first two only). Tractions are
         measured against at least TRACTION_FLOOR gamma ||u||: without contact they are
         zero up to round-off, and their relative change would be noise."""
-        u, t = self.layout.norms(new)
-        du, dt = self.layout.norms(new - old)
-        floor = max(TRACTION_FLOOR * self.gamma * u, 1e-300)
-        sizes = self.layout.component_norms(new)
-        sizes = np.maximum(sizes, max(floor, COMPONENT_FLOOR * np.max(sizes, initial=0.0)))
-        parts = self.layout.component_norms(new - old) / sizes
-        return du / max(u, 1e-300), dt / max(t, floor), float(np.max(parts, initial=0.0))
+        norms, changes = self.layout.part_norms(new), self.layout.part_norms(new - old)
+        sizes = self.part_sizes(norms)
+        parts = changes / sizes
+        whole = np.linalg.norm(changes[1:]) / max(np.linalg.norm(norms[1:]),
+                                                  self.traction_floor(norms[0]))
+        return float(parts[0]), float(whole), float(np.max(parts[1:], initial=0.0))
+
+    def traction_floor(self, u):
+        """TRACTION_FLOOR gamma ||u||, the least a traction is measured against."""
+        return max(TRACTION_FLOOR * self.gamma * u, 1e-300)
+
+    def part_sizes(self, norms):
+        """What the relative errors of the parts (StateLayout.parts) with these norms are
+        measured against: a traction component's at least traction_floor and
+        COMPONENT_FLOOR times the largest component."""
+        sizes = norms.copy()
+        floor = max(self.traction_floor(norms[0]),
+                    COMPONENT_FLOOR * np.max(norms[1:], initial=0.0))
+        sizes[1:] = np.maximum(sizes[1:], floor)
+        sizes[0] = max(sizes[0], 1e-300)
+        return sizes
 
     def error_estimate(self, image, x, anderson, scale):
         """The largest relative error of a part of the state (_ActiveSetLoop's docstring):
         ||r|| max ||dx_part|| / ||dr|| / ||x_part||, in the scaled norm of the
         acceleration (displacements as they are, tractions over gamma)."""
-        layout = self.layout
-        parts = [np.flatnonzero(layout.displacement_mask), *layout.traction_components]
+        sizes = self.part_sizes(self.layout.part_norms(image))
+        sizes[1:] /= self.gamma                       # the acceleration's scaling
         residual = float(np.linalg.norm((image - x) * scale))
-        sizes = np.array([np.linalg.norm((image * scale)[part]) for part in parts])
-        floor = TRACTION_FLOOR * self.gamma * layout.displacement_norm(image) / self.gamma
-        sizes[1:] = np.maximum(sizes[1:], max(floor, COMPONENT_FLOOR * np.max(sizes[1:])))
-        hidden = np.maximum(anderson.amplification(parts), 1.0) * residual
-        return ESTIMATE_MARGIN * float(np.max(hidden / np.maximum(sizes, 1e-300)))
+        hidden = np.maximum(anderson.amplification(), 1.0) * residual
+        return ESTIMATE_MARGIN * float(np.max(hidden / sizes))
 
     def converged(self, error):
         eps = self.settings.eps_u
@@ -327,7 +338,7 @@ class _PaperLoop(_Loop):
         layout, rho = self.layout, self.settings.rho
         scale = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
         scale = scale * np.sqrt(layout.entry_weight)
-        history = Anderson(scale, memory=self.AMPLIFICATION_WINDOW)
+        history = Anderson(scale, memory=self.AMPLIFICATION_WINDOW, parts=layout.parts)
         x, previous_psi, changes = layout.zeros(), None, []
         for iteration in range(1, self.settings.max_iterations + 1):
             psi = (self.penetration(x) < 0).astype(float)
@@ -394,7 +405,7 @@ class _ActiveSetLoop(_Loop):
         layout, eps = self.layout, self.settings.eps_u
         scale = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
         scale = scale * np.sqrt(layout.entry_weight)
-        anderson = Anderson(scale)
+        anderson = Anderson(scale, parts=layout.parts)
         x = layout.zeros()
         psi = (self.penetration(x) < 0).astype(float)
         if self.problem.scene.load.force is not None:

@@ -104,35 +104,20 @@ class StateLayout:
                 mask[where] = True
         return mask
 
-    def displacement_norm(self, x):
-        """Discrete L2 norm of the displacement traces over all interfaces."""
-        mask = self.displacement_mask
-        return float(np.sqrt(np.dot(self.entry_weight[mask], np.square(x[mask]))))
-
-    def traction_norm(self, x):
-        """Discrete L2 norm of the tractions over all interfaces."""
-        mask = ~self.displacement_mask
-        return float(np.sqrt(np.dot(self.entry_weight[mask], np.square(x[mask]))))
-
-    def norms(self, x):
-        """(displacement norm, traction norm)."""
-        return self.displacement_norm(x), self.traction_norm(x)
-
     @cached_property
-    def traction_components(self):
-        """Index arrays of the tractions, one per interface, side and component (a
-        contact's normal one; a bond's tangential and normal ones): the quantities a user
-        reads apart, e.g. a bond's shear next to its peel stress."""
-        groups = []
+    def parts(self):
+        """Index arrays of the quantities a user reads apart: all the displacements, then
+        the tractions, one per interface, side and component (a contact's normal one; a
+        bond's tangential and normal ones, e.g. its shear next to its peel stress)."""
+        parts = [np.flatnonzero(self.displacement_mask)]
         for (kind, i, side), where in self.slices.items():
             if kind == "t":
                 size = self.interfaces[i].size
-                groups += [np.arange(where.start + c * size, where.start + (c + 1) * size)
-                           for c in range(self.interfaces[i].components)]
-        return groups
+                parts += [np.arange(where.start + c * size, where.start + (c + 1) * size)
+                          for c in range(self.interfaces[i].components)]
+        return parts
 
-    def component_norms(self, x):
-        """Discrete L2 norm of every traction component (traction_components)."""
+    def part_norms(self, x):
+        """Discrete L2 norm of every part (parts): displacements first."""
         weight = self.entry_weight
-        return np.array([np.sqrt(np.dot(weight[g], np.square(x[g])))
-                         for g in self.traction_components])
+        return np.array([np.sqrt(np.dot(weight[p], np.square(x[p]))) for p in self.parts])
