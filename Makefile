@@ -5,13 +5,15 @@
 #   make bench   speed against accuracy (results/bench.csv, results/speed_accuracy.png)
 #   make stability  a sweep of 102 runs and maps of where each method converges
 #   make discrete   a cylinder over a coating in patches, both models (results/discrete.png)
+#   make adequacy   where each coating model is adequate, and model = "auto" checked
+#                   on 32 held-out scenes (results/adequacy/)
 # Both install what they need first (FreeFEM from Debian, a pinned Python venv).
 
 PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test clean figures fig3 fig4 fig5 bench stability discrete
+.PHONY: setup run test clean figures fig3 fig4 fig5 bench stability discrete adequacy
 
 # ---- The paper's figures: one run folder per scene, shared between figures ----------
 # results/runs/MODEL-h2_H-E2_E/summary.json is a run of the coating model MODEL with
@@ -84,6 +86,12 @@ bench: setup
 stability: setup
 	$(PYTHON) -m orchestrate sweep orchestrate/sweeps/stability.toml || [ $$? -eq 1 ]  # 1: some runs fail, as expected
 	$(PYTHON) -m orchestrate.stability results/stability
+
+# The model error of each coating model over h2/a x E2/E (the paper's scene) and the
+# automatic choice on held-out scenes (about 30 minutes; finished scenes are kept in
+# results/adequacy/*.csv, so an interrupted study resumes).
+adequacy: setup
+	$(PYTHON) -m orchestrate.adequacy
 
 clean:
 	rm -rf results/*/ .pytest_cache

@@ -21,7 +21,7 @@ from .errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT_INTERRUPTE
                      EXIT_NOT_CONVERGED,
                      EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure)
 from .freefem import FreeFemMissing
-from .scene import METHODS, MODELS, WORKERS, Settings
+from .scene import METHODS, MODEL_CHOICES, WORKERS, Settings
 from .scene_file import SHORTHANDS, scene_and_settings
 
 EXIT_STATUSES = """exit status:
@@ -44,8 +44,10 @@ _SETTINGS_HELP = {
     "worker_timeout": "seconds a worker may take to answer before the run fails",
     "memory_limit": "GiB the run may take (estimated before any work; default: 3/4 of the "
                     "memory free)",
+    "model_tolerance": "with --model auto: the estimated relative error of the peak contact "
+                       "stress the chosen coating model may have",
 }
-_CHOICES = {"model": MODELS, "method": METHODS, "workers": WORKERS}
+_CHOICES = {"model": MODEL_CHOICES, "method": METHODS, "workers": WORKERS}
 
 
 def _option(name):
@@ -238,6 +240,10 @@ def _solve(args):
         print("failed: out of memory (lower --memory-limit's estimate: coarsen the mesh)",
               file=sys.stderr)
         return EXIT_FAILED
+    for patch in (summary["model_choice"] or {}).get("patches", []):
+        _say(f"coating[{patch['patch']}]: model auto chose {patch['model']} (estimated error "
+             f"of the peak contact stress {100 * patch['estimated_error']:.2g} %, tolerance "
+             f"{100 * settings.model_tolerance:g} %; h2/a = {patch['h2_over_a']:.3g})")
     descent = (f", descent {summary['descent']:.4e}" if scene.load.force is not None else "")
     _say(f"converged in {summary['iterations']} iterations, {summary['wall_time_s']:.1f} s; "
          f"contact force {summary['total_force']:.4e}{descent}, contact zones "

@@ -35,7 +35,7 @@ import numpy as np
 
 from .body_plans import base_plan, indenter_plan
 from .geometry import IndenterFace, base_face, lowest_point
-from .scene import SHELL_MODELS, ParameterError
+from .scene import MODELS, SHELL_MODELS, ParameterError
 
 # The 2D coating: one layer of cells per b/8 of height, as the paper's 64 ... 512
 # triangles for h2 = b/8 ... b, and at least one; a cell at most MAX_ASPECT times as
@@ -206,7 +206,12 @@ def coating_layers(coating, level):
 
 
 def discretize(scene, settings):
-    """The subdomains and interfaces of a scene at the settings' mesh."""
+    """The subdomains and interfaces of a scene at the settings' mesh (every patch's
+    model decided: model_choice.choose_models turns "auto" into one)."""
+    undecided = [n for n, c in enumerate(scene.coatings, start=1) if c.model not in MODELS]
+    if undecided:
+        raise ValueError(f"coating{undecided[0]}: model {scene.coatings[undecided[0] - 1].model!r} "
+                         "must be decided before the scene is discretised")
     face = base_face(scene.base)
     level = settings.mesh_level
     size = settings.element_size / level

@@ -55,8 +55,9 @@ def estimated_dofs(problem):
             dofs[name] = 4 * body_triangles(plan)
         elif isinstance(plan, CoatingPlan):
             dofs[name] = 2 * (2 * len(plan.nodes) - 1) * (2 * plan.layers + 1)
-        else:
-            dofs[name] = 3 * (4 * (len(plan.nodes) - 1) + 1)
+        else:                            # P4 fields v, w, gamma (and P2 epsilon)
+            dofs[name] = 3 * (4 * (len(plan.nodes) - 1) + 1) + (
+                2 * (len(plan.nodes) - 1) + 1 if plan.thickness_stretch else 0)
     return dofs
 
 

@@ -26,6 +26,7 @@ from .errors import ParameterError
 
 MODELS = ("shell", "stretch_shell", "elastic")
 SHELL_MODELS = ("shell", "stretch_shell")   # the coating on its mid-line
+MODEL_CHOICES = MODELS + ("auto",)            # auto: chosen per patch (model_choice.py)
 THETA_RANGE = (1e-6, 1.0)      # the penalty, b/E
 ROBIN_RANGE = (1e-3, 1e3)      # the Robin parameter, E/b
 MODULUS_RATIO = 1e6            # the largest over the smallest modulus of a scene
@@ -177,7 +178,8 @@ class Coating:
     E: float = 1.0
     nu: float = 0.3
     model: str = "shell"           # "shell" (Timoshenko-type, the paper's), "stretch_shell"
-                                   # (the same with thickness stretch) or "elastic" (2D)
+                                   # (the same with thickness stretch), "elastic" (2D) or
+                                   # "auto" (chosen per scene: orchestrate/model_choice.py)
     shear_factor: float = 5.0 / 6.0  # k' of the shell
 
     def check(self, prefix):
@@ -189,7 +191,7 @@ class Coating:
         for name in ("thickness", "E", "shear_factor"):
             _positive(prefix + name, getattr(self, name))
         _poisson(prefix + "nu", self.nu)
-        _choice(prefix + "model", self.model, MODELS)
+        _choice(prefix + "model", self.model, MODEL_CHOICES)
 
 
 @dataclass(frozen=True)
@@ -352,6 +354,8 @@ class Settings:
     workers: str = "persistent"    # FreeFEM workers: persistent, or a fresh process per solve
     worker_timeout: float = 600.0  # seconds a worker may take to answer before the run fails
     memory_limit: Optional[float] = None  # GiB the run may take; None: 3/4 of what is free
+    model_tolerance: float = 0.01  # model = "auto": the estimated error of the peak
+                                   # contact stress a chosen coating model may have
 
     def __post_init__(self):
         _choice("workers", self.workers, WORKERS)
@@ -385,6 +389,9 @@ class Settings:
                  "worker's set-up alone takes a good part of a second")
         if self.memory_limit is not None:
             _positive("memory_limit", self.memory_limit)
+        _require(_finite(self.model_tolerance) and 0 < self.model_tolerance <= 1,
+                 "model_tolerance", f"model_tolerance = {self.model_tolerance!r} must lie in "
+                 "(0, 1] (a relative error; 0.01 is 1 %)")
 
     @property
     def robin_parameter(self):

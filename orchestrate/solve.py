@@ -32,6 +32,7 @@ from .errors import RunFailed  # noqa: F401  (raised here; callers import it fro
 from .faults import checkpoint
 from .folders import RunFolder, WorkFolder
 from .labels import LABELS
+from .model_choice import choose_models
 from .outputs import read_reactions, write_csv, write_history, write_json, write_shell_fields
 from .problem_size import check_size
 from .robin import run_robin_loop
@@ -49,9 +50,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
     writing the report) if the loop does not converge, SystemFailure if a worker or a
     file fails. The folder appears only once complete (orchestrate/folders.py)."""
     freefem.executable()             # a missing FreeFEM is reported before any work
-    check_compatible(scene, settings)
-    problem = discretize(scene, settings)
-    check_size(problem)
+    scene, problem, model_choice = prepare(scene, settings)
     start = time.perf_counter()
     with RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir:
         scratch = str(folder.scratch)
@@ -70,8 +69,9 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
                 subdomains.write_outputs()   # the workers hold the fields of the last solve
             dofs = subdomains.dofs
         summary = {
-            "scene": to_dict(scene),
+            "scene": to_dict(scene),         # as solved: "auto" patches with their model
             "settings": to_dict(settings),
+            "model_choice": model_choice,
             "status": loop.status,
             "reason": loop.reason,
             "converged": loop.converged,
@@ -94,6 +94,17 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
     if not loop.converged:
         raise RunFailed(summary)
     return summary
+
+
+def prepare(scene, settings):
+    """Everything checked and decided before any work: (the scene as it will be solved,
+    with every "auto" patch's model chosen; its problem; the choice's report or None).
+    ParameterError for settings the scene cannot take or a problem too large."""
+    check_compatible(scene, settings)
+    scene, model_choice = choose_models(scene, settings)
+    problem = discretize(scene, settings)
+    check_size(problem)
+    return scene, problem, model_choice
 
 
 def zone_end_reached(problem, psi):

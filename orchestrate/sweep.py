@@ -56,7 +56,7 @@ from .folders import (RunFolder, hold_lock, release_lock, remove_dead_run_leftov
                       remove_dead_work_folders)
 from .outputs import write_json
 from .paths import RESULTS_DIR
-from .scene import Settings, check_compatible, scene_from_dict, to_dict
+from .scene import Settings, scene_from_dict, to_dict
 from .scene_file import is_scene_key, read_toml, scene_and_settings, shorthand_values
 
 SETTINGS_FIELDS = {f.name for f in fields(Settings)}
@@ -114,15 +114,13 @@ def load_sweep(path):
 def check_points(points, scene_dir="."):
     """Refuse the sweep, before any run, if any point's scene, settings or size is bad;
     the message names every bad point."""
-    from .discretization import discretize
-    from .problem_size import check_size
+    from .solve import prepare
 
     problems = []
     for number, values in enumerate(points, start=1):
         try:
             scene, settings = point_scene(values, scene_dir)
-            check_compatible(scene, settings)
-            check_size(discretize(scene, settings))
+            prepare(scene, settings)
         except (ParameterError, TypeError, ValueError) as error:
             problems.append(f"point {number} {values}: {error}")
     if problems:
@@ -208,6 +206,15 @@ def _worker_init(driver):
 
 # ---- the table ------------------------------------------------------------------------
 
+def _model_choice_columns(choice):
+    """A run with "auto" patches: the models chosen (one per auto patch, "/"-joined) and
+    the largest estimated model error among them."""
+    if not choice:
+        return {"model_chosen": None, "model_error_estimate": None}
+    return {"model_chosen": "/".join(p["model"] for p in choice["patches"]),
+            "model_error_estimate": max(p["estimated_error"] for p in choice["patches"])}
+
+
 def gather(sweep_dir, points):
     """One row per point: its values, the scene and settings, outcome and figures."""
     rows = []
@@ -233,6 +240,7 @@ def gather(sweep_dir, points):
                     "contact_half_width", "wall_time_s", "setup_time_s",
                     "time_per_iteration_s"):
             row[key] = summary.get(key)
+        row.update(_model_choice_columns(summary.get("model_choice")))
         rows.append(row)
     return pd.DataFrame(rows)
 

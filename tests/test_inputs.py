@@ -44,6 +44,8 @@ def test_chi_is_refused_naming_itself():
     ({"method": "fast"}, "method"), ({"robin": -1.0}, "robin"),
     ({"robin": 2.0, "theta": 1.0}, "robin"), ({"workers": "threads"}, "workers"),
     ({"element_size": 0.0}, "element_size"),
+    ({"model_tolerance": 0.0}, "model_tolerance"), ({"model_tolerance": 1.5}, "model_tolerance"),
+    ({"model_tolerance": float("nan")}, "model_tolerance"),
 ])
 def test_settings_refuse(values, parameter):
     with pytest.raises(ParameterError, match=rf"^{parameter} = "):
@@ -65,6 +67,8 @@ def _cli(*arguments, env=None):
     ("--theta", "0", "theta = "), ("--mesh-level", "0", "mesh_level = "),
     ("--set", "indenter.radius=-5", "indenter.radius = "),
     ("--set", "base.colour=1", "base.colour"),
+    ("--set", "coating[1].model='automatic'", "coating[1].model = "),
+    ("--model-tolerance", "-0.01", "model_tolerance = "),
     ("--force", "1e-3", "method = 'paper' cannot carry load.force"),
 ])
 def test_command_line_refuses_before_any_work(flag, value, parameter, tmp_path):

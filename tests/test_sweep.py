@@ -34,8 +34,12 @@ E2 = [1.0, 5.0]
 model = "shell"
 method = "paper"
 max_iterations = 30
+[[runs]]
+model = "auto"
+h2 = 0.015625
+E2 = 1.0
 """
-RUNS = 9
+RUNS = 10
 
 
 @pytest.fixture(scope="module")
@@ -69,13 +73,21 @@ def _same_table(a, b):
 def test_every_run_is_a_row_failures_with_their_reason(uninterrupted):
     table, out = uninterrupted
     assert len(table) == RUNS and len(pd.read_csv(out / "runs.csv")) == RUNS
-    assert (table.status == "converged").sum() == 8
+    assert (table.status == "converged").sum() == 9
     stopped = table[table.status == "max_iterations"]
     assert len(stopped) == 1 and not stopped.converged.iloc[0]
     assert sorted(os.listdir(out / "runs")) == sorted(table.id)
     converged = table[table.converged.astype(bool)]
     assert (converged.final_relative_change < converged.eps_u).all()
     assert not table[~table.converged.astype(bool)].status.isin(["converged"]).any()
+
+
+def test_an_auto_run_is_a_row_with_the_model_chosen_and_its_estimate(uninterrupted):
+    table, _ = uninterrupted
+    auto = table[table.model_chosen.notna()]
+    assert len(auto) == 1        # b/64: the 2D coating would need twice the unknowns
+    assert auto.model_chosen.iloc[0] == auto.model.iloc[0] == "stretch_shell"
+    assert 0 <= auto.model_error_estimate.iloc[0] <= 0.01
 
 
 def test_a_finished_sweep_is_not_run_again(sweep_file, uninterrupted):
