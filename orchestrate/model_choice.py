@@ -56,8 +56,8 @@ COST_TIE = 1.1
 
 # Fitted on the calibration set (results/adequacy/calibration.csv) by
 # ``python -m orchestrate.adequacy --fit``
-SHELL = (0.2738, -0.1994, 0.02272, 0.2005)              # K1, K2, K3, K4
-STRETCH_SOFT_COATING = (0.02562, 0.8690)                # S, s
+SHELL = (0.2528, -0.2192, 0.02848, 0.2154)              # K1, K2, K3, K4
+STRETCH_SOFT_COATING = (0.02672, 0.8696)                # S, s
 STRETCH_STIFF_COATING = (0.01727, 0.003896)             # T, P
 
 

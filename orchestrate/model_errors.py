@@ -8,8 +8,11 @@ the default run) and compared with it:
 
     error_peak         peak contact stress / the reference's - 1 (signed: + too stiff)
     error_bond_peak    the same for the bond's peak normal stress under the contact (the
-                       bond points within the contact's span: away from the patches'
-                       bonded ends, where the stress is singular and no mesh converges)
+                       bond points within the contact's span)
+Both peaks are taken away from the patches' ends (farther than EDGE_DISTANCE thicknesses):
+where the indenter presses on the step at a patch's end, or the bond ends, the stress is
+singular and no mesh converges (measured on the discrete scene: the 2D model 11-42 %
+from its own finer mesh at the step).
 
 Scenes are measured in parallel and appended to a CSV as they finish, so that an
 interrupted study resumes where it stopped (orchestrate/adequacy.py runs the studies).
@@ -29,6 +32,7 @@ from .scene import SHELL_MODELS, Settings, to_dict
 
 REFERENCE_TOLERANCE = 1e-3     # well below the 0.2 % where model errors are judged
 REFERENCE_LEVELS = (1, 2, 3, 4)
+EDGE_DISTANCE = 2.0            # thicknesses from a patch's end
 BASE_THETA = 1e-3              # the default penalty; theta = BASE_THETA / level
 
 
@@ -37,8 +41,20 @@ def with_model(scene, model):
     return replace(scene, coatings=tuple(replace(c, model=model) for c in scene.coatings))
 
 
+def away_from_patch_ends(scene, x):
+    """Which of the points x1 lie farther than EDGE_DISTANCE thicknesses from every
+    patch end (a half model's symmetry axis is no end)."""
+    keep = np.ones_like(x, dtype=bool)
+    for coating in scene.coatings:
+        for end in (coating.start, coating.end):
+            if not (scene.symmetric and end == 0.0):
+                keep &= np.abs(x - end) > EDGE_DISTANCE * coating.thickness
+    return keep
+
+
 def peaks(scene, level):
-    """Peak contact stress and bond peak (under the contact) of the monolithic solve."""
+    """Peak contact stress and bond peak (under the contact) of the monolithic solve,
+    away from the patches' ends; and the contact's span."""
     settings = Settings(mesh_level=level, theta=BASE_THETA / level)
     problem, _, stresses = monolithic_solution(scene, settings)
     contact_x, contact_sigma = [], []
@@ -47,11 +63,13 @@ def peaks(scene, level):
         contact_sigma.append(stresses[i])
     x, sigma = np.concatenate(contact_x), np.concatenate(contact_sigma)
     loaded = x[sigma < 0]
-    bond = [stresses[problem.interfaces.index(b)][1][
-        (b.position[:, 0] >= loaded.min()) & (b.position[:, 0] <= loaded.max())]
-        for b in problem.bonds]
+    bond = []
+    for b in problem.bonds:
+        bx = b.position[:, 0]
+        under = (bx >= loaded.min()) & (bx <= loaded.max()) & away_from_patch_ends(scene, bx)
+        bond.append(stresses[problem.interfaces.index(b)][1][under])
     bond = np.concatenate(bond) if bond else np.array([])
-    return {"peak": float(sigma.min()),
+    return {"peak": float(sigma[away_from_patch_ends(scene, x)].min()),
             "bond_peak": float(bond.min()) if bond.size else float("nan"),
             "contact_span": float(loaded.max() - loaded.min())}
 

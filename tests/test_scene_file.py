@@ -84,7 +84,7 @@ BAD = [
     ("a bad profile", _edit(BASE, "radius = 20.0", "radius = 20.0\nprofile = \"ellipse\""),
      ["indenter.profile = 'ellipse'", "('circle', 'parabola')"]),
     ("a bad model", _edit(BASE, "thickness = 0.125", "thickness = 0.125\nmodel = \"plate\""),
-     ["coating[1].model = 'plate'", "('shell', 'stretch_shell', 'elastic')"]),
+     ["coating[1].model = 'plate'", "('shell', 'stretch_shell', 'elastic', 'auto')"]),
     ("a Poisson ratio of 0.5", _edit(BASE, "thickness = 0.125", "thickness = 0.125\nnu = 0.5"),
      ["coating[1].nu = 0.5", "(-1, 0.5)"]),
     ("a string for a modulus", _edit(BASE, "thickness = 0.125", "thickness = 0.125\nE = \"stiff\""),
