@@ -103,11 +103,15 @@ def model_part(table, model):
     return (1 + table[f"{model}_error_peak"]) / (1 + table.elastic_error_peak) - 1
 
 
+def _scenes(table):
+    """The scene of every row."""
+    return [scene_from_dict(json.loads(text)) for text in table.scene]
+
+
 def features(table):
     """x, c, q (model_choice.scene_ratios) of every row's first patch."""
-    ratios = [model_choice.scene_ratios(scene, scene.coatings[0])
-              for scene in (scene_from_dict(json.loads(text)) for text in table.scene)]
-    return np.array(ratios).T
+    return np.array([model_choice.scene_ratios(scene, scene.coatings[0])
+                     for scene in _scenes(table)]).T
 
 
 def fit(table):
@@ -134,11 +138,8 @@ def fit(table):
 # ---- the validation ----------------------------------------------------------------------
 
 def estimates(table):
-    rows = []
-    for text in table.scene:
-        scene = scene_from_dict(json.loads(text))
-        rows.append(model_choice.estimated_errors(scene, scene.coatings[0]))
-    return pd.DataFrame(rows, index=table.index)
+    return pd.DataFrame([model_choice.estimated_errors(scene, scene.coatings[0])
+                         for scene in _scenes(table)], index=table.index)
 
 
 def judge(table):
@@ -224,13 +225,16 @@ def choice_map(heights, moduli):
 
 def draw_map(calibration, path):
     calibration = calibration[~calibration.label.str.contains("nu2")].copy()   # nu2 = 0.3
-    patches = [json.loads(text)["coatings"][0] for text in calibration.scene]
-    calibration["h2"] = [p["thickness"] for p in patches]
-    calibration["E2"] = [p["E"] for p in patches]
+    patches = [scene.coatings[0] for scene in _scenes(calibration)]
+    calibration["h2"] = [p.thickness for p in patches]
+    calibration["E2"] = [p.E for p in patches]
     a = model_choice.contact_half_width(paper_scene())
     heights = np.geomspace(1 / 128, 1.0, 43)
     moduli = np.geomspace(0.1, 10.0, 31)
     choice = choice_map(heights, moduli)
+    scenes = [[paper_scene(h2=h2, E2=E2) for h2 in heights] for E2 in moduli]
+    estimate = {model: np.array([[model_choice.estimated_errors(scene, scene.coatings[0])[model]
+                                  for scene in row] for row in scenes]) for model in ONE_D}
     colours = ListedColormap(["#d6e9fb", "#ddf0dd", "#eeeeee"])
     figure, axes = plt.subplots(1, 2, figsize=(12, 4.8), sharey=True)
     for axis, model in zip(axes, ONE_D):
@@ -242,12 +246,7 @@ def draw_map(calibration, path):
         for h2, E2, value in zip(calibration.h2, calibration.E2, measured):
             axis.annotate(f"{100 * value:.2g}", (h2 / a, E2), textcoords="offset points",
                           xytext=(0, 8), ha="center", fontsize=6)
-        grid_h = np.geomspace(heights[0], heights[-1], 200)
-        grid_E = np.geomspace(moduli[0], moduli[-1], 200)
-        estimate = np.array([[model_choice.estimated_errors(
-            paper_scene(h2=h, E2=E), paper_scene(h2=h, E2=E).coatings[0])[model]
-            for h in grid_h[::5]] for E in grid_E[::5]])
-        axis.contour(grid_h[::5] / a, grid_E[::5], estimate, levels=[0.01], colors="k",
+        axis.contour(heights / a, moduli, estimate[model], levels=[0.01], colors="k",
                      linestyles="--")
         axis.set(xscale="log", yscale="log", xlabel="h2 / a (a: estimated contact half-width)",
                  title=f"{model}: labels in %")

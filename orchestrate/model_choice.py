@@ -43,7 +43,6 @@ a shell until it must refine (thinner than about b/32), and a run's time follows
 unknowns (README, benchmarks).
 """
 
-from dataclasses import replace
 import math
 
 from .discretization import discretize
@@ -147,9 +146,9 @@ def scene_ratios(scene, coating):
 
 def estimated_errors(scene, coating):
     """{model: estimated |relative error| of the peak contact stress} of a patch."""
-    if contact_half_width(scene) == 0.0:      # no load: every model is exact
-        return {model: 0.0 for model in MODELS}
     x, c, q = scene_ratios(scene, coating)
+    if math.isinf(x):                         # no load, no contact: every model is exact
+        return {model: 0.0 for model in MODELS}
     k1, k2, k3, k4 = SHELL
     (S, s), (T, P) = STRETCH_SOFT_COATING, STRETCH_STIFF_COATING
     return {"shell": abs(x * (k1 * c + k2 * q) + x ** 2 * (k3 + k4 * c)),
@@ -158,10 +157,6 @@ def estimated_errors(scene, coating):
 
 
 # ---- the choice ------------------------------------------------------------------------
-
-def _with_patch_models(scene, models):
-    return replace(scene, coatings=tuple(replace(c, model=m) for c, m in zip(scene.coatings, models)))
-
 
 def estimated_unknowns(scene, settings):
     return sum(estimated_dofs(discretize(scene, settings)).values())
@@ -173,6 +168,7 @@ def choose_models(scene, settings):
     if not auto:
         return scene, None
     tolerance = settings.model_tolerance
+    a = contact_half_width(scene)
     # while a patch is decided, the other undecided ones are shells (the cheapest)
     models = [("shell" if c.model == AUTO else c.model) for c in scene.coatings]
     patches = []
@@ -183,14 +179,14 @@ def choose_models(scene, settings):
         for model in FIDELITY:
             trial = list(models)
             trial[n] = model
-            unknowns[model] = round(estimated_unknowns(_with_patch_models(scene, trial), settings))
+            unknowns[model] = round(estimated_unknowns(scene.with_models(trial), settings))
         passing = [m for m in FIDELITY if errors[m] <= tolerance]   # elastic always passes
         cheapest = min(unknowns[m] for m in passing)
         chosen = [m for m in passing if unknowns[m] <= COST_TIE * cheapest][-1]
         models[n] = chosen
         patches.append({"patch": n + 1, "model": chosen, "estimated_error": errors[chosen],
-                        "h2_over_a": scene_ratios(scene, coating)[0],
+                        "h2_over_a": coating.thickness / a if a else math.inf,
                         "estimated_errors": errors, "estimated_unknowns": unknowns})
-    report = {"tolerance": tolerance, "contact_half_width_estimate": contact_half_width(scene),
+    report = {"tolerance": tolerance, "contact_half_width_estimate": a,
               "patches": patches}
-    return _with_patch_models(scene, models), report
+    return scene.with_models(models), report

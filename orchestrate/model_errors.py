@@ -19,7 +19,6 @@ interrupted study resumes where it stopped (orchestrate/adequacy.py runs the stu
 """
 
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import replace
 import json
 import os
 import time
@@ -28,17 +27,17 @@ import numpy as np
 import pandas as pd
 
 from .monolithic import monolithic_solution
-from .scene import SHELL_MODELS, Settings, to_dict
+from .reference import refinement_settings
+from .scene import MODELS, to_dict
 
 REFERENCE_TOLERANCE = 1e-3     # well below the 0.2 % where model errors are judged
 REFERENCE_LEVELS = (1, 2, 3, 4)
 EDGE_DISTANCE = 2.0            # thicknesses from a patch's end
-BASE_THETA = 1e-3              # the default penalty; theta = BASE_THETA / level
 
 
 def with_model(scene, model):
     """The scene with every coating patch modelled by ``model``."""
-    return replace(scene, coatings=tuple(replace(c, model=model) for c in scene.coatings))
+    return scene.with_models([model] * len(scene.coatings))
 
 
 def away_from_patch_ends(scene, x):
@@ -55,13 +54,9 @@ def away_from_patch_ends(scene, x):
 def peaks(scene, level):
     """Peak contact stress and bond peak (under the contact) of the monolithic solve,
     away from the patches' ends; and the contact's span."""
-    settings = Settings(mesh_level=level, theta=BASE_THETA / level)
-    problem, _, stresses = monolithic_solution(scene, settings)
-    contact_x, contact_sigma = [], []
-    for i in (problem.interfaces.index(c) for c in problem.contacts):
-        contact_x.append(problem.interfaces[i].position[:, 0])
-        contact_sigma.append(stresses[i])
-    x, sigma = np.concatenate(contact_x), np.concatenate(contact_sigma)
+    problem, _, stresses = monolithic_solution(scene, refinement_settings(level))
+    x = np.concatenate([c.position[:, 0] for c in problem.contacts])
+    sigma = np.concatenate([stresses[problem.interfaces.index(c)] for c in problem.contacts])
     loaded = x[sigma < 0]
     bond = []
     for b in problem.bonds:
@@ -93,7 +88,7 @@ def measure(label, scene):
     row = {"label": label, "scene": json.dumps(to_dict(scene)),
            "reference_peak": ref["peak"], "reference_bond_peak": ref["bond_peak"],
            "contact_span": ref["contact_span"], "reference_levels": ref["levels"]}
-    for model in SHELL_MODELS + ("elastic",):
+    for model in MODELS:
         result = peaks(with_model(scene, model), 1)
         row[f"{model}_error_peak"] = result["peak"] / ref["peak"] - 1.0
         row[f"{model}_error_bond_peak"] = result["bond_peak"] / ref["bond_peak"] - 1.0

@@ -30,6 +30,11 @@ MAX_LEVEL = 5
 BASE_THETA = 1e-3
 
 
+def refinement_settings(level):
+    """Mesh level ``level`` with the penalty scaled like the mesh."""
+    return Settings(mesh_level=level, theta=BASE_THETA / level)
+
+
 def reference_dir(h2, E2):
     return RESULTS_DIR / "reference" / f"h2_{h2:g}-E2_{E2:g}"
 
@@ -39,7 +44,7 @@ def compute_reference(scene, out_dir, progress=print):
     rows, previous = [], None
     for level in range(1, MAX_LEVEL + 1):
         start = time.perf_counter()
-        settings = Settings(mesh_level=level, theta=BASE_THETA / level)
+        settings = refinement_settings(level)
         x1, sigma_12n, sigma_23n, _ = monolithic_curves(scene, settings)
         contact, interface = (x1, sigma_12n), (x1, sigma_23n)
         row = {"level": level, "theta": settings.theta, "points": len(x1),

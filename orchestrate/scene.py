@@ -331,6 +331,11 @@ class Scene:
         mirrored = {replace(c, start=-c.end, end=-c.start) for c in self.coatings}
         return mirrored == set(self.coatings)
 
+    def with_models(self, models):
+        """The scene with its patches modelled by ``models``, one per patch."""
+        return replace(self, coatings=tuple(replace(c, model=m)
+                                            for c, m in zip(self.coatings, models)))
+
     @property
     def half_force(self):
         """The stamp's force on the modelled part (half of it in a half model)."""
