@@ -26,13 +26,14 @@ import time
 import numpy as np
 import pandas as pd
 
+from .answers import END_ZONE, near_patch_ends
 from .monolithic import monolithic_solution
 from .reference import refinement_settings
 from .scene import MODELS, to_dict
 
 REFERENCE_TOLERANCE = 1e-3     # well below the 0.2 % where model errors are judged
 REFERENCE_LEVELS = (1, 2, 3, 4)
-EDGE_DISTANCE = 2.0            # thicknesses from a patch's end
+EDGE_DISTANCE = END_ZONE       # thicknesses from a patch's end
 
 
 def with_model(scene, model):
@@ -42,13 +43,8 @@ def with_model(scene, model):
 
 def away_from_patch_ends(scene, x):
     """Which of the points x1 lie farther than EDGE_DISTANCE thicknesses from every
-    patch end (a half model's symmetry axis is no end)."""
-    keep = np.ones_like(x, dtype=bool)
-    for coating in scene.coatings:
-        for end in (coating.start, coating.end):
-            if not (scene.symmetric and end == 0.0):
-                keep &= np.abs(x - end) > EDGE_DISTANCE * coating.thickness
-    return keep
+    patch end."""
+    return ~near_patch_ends(scene, x, EDGE_DISTANCE)
 
 
 def peaks(scene, level):

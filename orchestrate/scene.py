@@ -248,6 +248,11 @@ class Scene:
             coating.check(f"coating[{number}].")
         self._check_layout()
 
+    def patch_ends(self, coating):
+        """The x1 of a patch's ends (a half model's symmetry axis is no end)."""
+        return [end for end in (coating.start, coating.end)
+                if not (self.symmetric and end == 0.0)]
+
     def _check_layout(self):
         base, indenter = self.base, self.indenter
         low = 0.0 if self.symmetric else -base.top

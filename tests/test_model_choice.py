@@ -1,11 +1,12 @@
 """model = "auto" (orchestrate/model_choice.py): the a priori contact half-width, the
 estimate of each coating model's error against a measured one, and the choice.
 
-The estimate's constants were fitted on the paper's scene (orchestrate/adequacy.py);
-its check here is on a scene it was not fitted on, measured against the mesh-converged
-2D model (orchestrate/model_errors.py): paper h2 = 0.3 b, E2 = 0.15 E, where the
-Timoshenko shell is 34 % too stiff and the stretch shell 0.46 % (both judged: above
-0.2 %). The whole held-out study is `make adequacy` (README)."""
+The estimate's constants were fitted on the calibration set (orchestrate/adequacy.py);
+its check here is on a scene of the held-out set, which neither its forms nor its
+constants saw, measured against the mesh-converged 2D model
+(orchestrate/model_errors.py): paper h2 = 0.45 b, E2 = 0.3 E, where the Timoshenko shell
+is 25 % too stiff in contact stress and 29 % on the bond, the stretch shell 0.9 % and
+0.7 % (all judged: above 0.2 %). The whole held-out study is `make adequacy` (README)."""
 
 from dataclasses import replace
 import json
@@ -50,18 +51,37 @@ def test_the_a_priori_half_width_is_the_measured_one_within_15_percent(scene):
 def test_no_load_no_contact_every_model_exact():
     scene = paper_scene(stamp=0.0)
     assert model_choice.contact_half_width(scene) == 0.0
-    assert set(model_choice.estimated_errors(scene, scene.coatings[0]).values()) == {0.0}
+    errors = model_choice.estimated_errors(scene, scene.coatings[0])
+    assert {model_choice.worst_error(e) for e in errors.values()} == {0.0}
 
 
 def test_the_estimate_is_within_twice_the_measured_error_on_a_held_out_scene():
-    scene = paper_scene(h2=0.3, E2=0.15)
+    scene = paper_scene(h2=0.45, E2=0.3)
     measured = measure("held out", scene)
     estimated = model_choice.estimated_errors(scene, scene.coatings[0])
     for model in ("shell", "stretch_shell"):
-        error = abs(measured[f"{model}_error_peak"])
-        assert error > 0.002, model
-        assert 0.5 <= estimated[model] / error <= 2.0, (model, estimated[model], error)
+        for quantity, column in (("contact", "peak"), ("bond", "bond_peak")):
+            error = abs(measured[f"{model}_error_{column}"])
+            assert error > 0.002, (model, quantity)
+            assert 0.5 <= estimated[model][quantity] / error <= 2.0, (
+                model, quantity, estimated[model][quantity], error)
     assert abs(measured["elastic_error_peak"]) < 1e-3       # the 2D model: its mesh only
+
+
+@pytest.mark.parametrize("scene, reason", [
+    (paper_scene(h2=1 / 16, E2=1.0, nu2=0.45, model=AUTO), "Poisson ratio 0.45 outside"),
+    (_scene("discrete", model=AUTO), "patch end x1 = 0.5 within the contact"),
+], ids=["nearly incompressible coating", "patch end under the contact"])
+def test_where_the_estimate_does_not_hold_auto_takes_the_2d_model(scene, reason):
+    """Measured (make adequacy): at nu2 = 0.45-0.49 the shell's error changes sign
+    (-0.6 to -2.4 %) and across patch ends it reaches 8 %, where the forms say far less;
+    auto must not trust them there, even though the shell is cheaper."""
+    solved, report = model_choice.choose_models(scene, Settings(model_tolerance=1.0))
+    assert {c.model for c in solved.coatings[:1]} == {"elastic"}
+    first = report["patches"][0]
+    assert reason in first["not_estimated"]
+    assert first["estimated_errors"]["shell"] is None
+    assert first["estimated_errors"]["stretch_shell"] is None
 
 
 def test_a_scene_without_auto_is_left_as_it_is():
@@ -82,7 +102,8 @@ def test_auto_chooses_the_cheapest_model_within_tolerance(h2, E2, tolerance, cho
     patch = report["patches"][0]
     assert patch["model"] == chosen and patch["estimated_error"] <= tolerance
     costs, errors = patch["estimated_unknowns"], patch["estimated_errors"]
-    passing = [m for m in model_choice.FIDELITY if errors[m] <= tolerance]
+    passing = [m for m in model_choice.FIDELITY
+               if model_choice.worst_error(errors[m]) <= tolerance]
     # nothing within tolerance is cheaper by more than the tie margin
     assert all(costs[chosen] <= model_choice.COST_TIE * costs[m] for m in passing)
     assert solved == replace(scene, coatings=(replace(scene.coatings[0], model=chosen),))

@@ -1,0 +1,127 @@
+"""The answers a coating engineer looks for, from a finished run's stresses.
+
+    contact     the peak contact pressure (positive), where it is
+    bonds       per bond: the largest tensile normal stress (peel), the largest
+                compressive one and the largest shear, each with its position
+    coatings    per patch: the largest von Mises stress and its position (2D model);
+                the fibre stresses at the top and bottom faces and the mean shear from
+                the shell's forces (shell models)
+
+Where a bonded coating ends, the elastic solution is singular (a bi-material wedge): the
+stresses there grow as the mesh refines and have no converged value. Every maximum is
+therefore taken twice: away from the patches' ends (farther than END_ZONE thicknesses,
+the values to design with) and within that distance ("at_patch_ends", marked
+mesh-dependent: they say where the stress concentrates, not how much). A half model's
+symmetry axis is no end.
+
+Stresses are in the scene's stress unit (E in the dimensionless form), positions in its
+length unit; compression is negative, tension positive.
+"""
+
+import numpy as np
+
+END_ZONE = 2.0   # thicknesses from a patch's end: measured, the 2D model's peak there
+                 # moved 11-42 % between meshes (orchestrate/model_errors.py)
+
+
+def near_patch_ends(scene, x1, thicknesses=END_ZONE):
+    """Which points x1 lie within ``thicknesses`` of some patch's end."""
+    near = np.zeros(len(x1), dtype=bool)
+    for coating in scene.coatings:
+        for end in scene.patch_ends(coating):
+            near |= np.abs(np.asarray(x1) - end) <= thicknesses * coating.thickness
+    return near
+
+
+TENSION, COMPRESSION, MAGNITUDE = "tension", "compression", "magnitude"
+
+
+def _extreme(values, x1, x2, kind):
+    """{value, x1, x2} of the largest tension (> 0), compression (< 0) or magnitude;
+    None where there is none."""
+    if len(values) == 0:
+        return None
+    i = int(np.argmin(values) if kind == COMPRESSION else np.argmax(values))
+    if (kind == TENSION and values[i] <= 0) or (kind == COMPRESSION and values[i] >= 0):
+        return None
+    return {"value": float(values[i]), "x1": float(x1[i]), "x2": float(x2[i])}
+
+
+def _maxima(scene, quantities, x1, x2):
+    """For each (name, values, kind): the extreme away from the patches' ends and,
+    apart, the one within their end zones (mesh-dependent)."""
+    x1, x2 = np.asarray(x1), np.asarray(x2)
+    near_end = near_patch_ends(scene, x1)
+    away = {name: _extreme(np.asarray(values)[~near_end], x1[~near_end], x2[~near_end], kind)
+            for name, values, kind in quantities}
+    if near_end.any():
+        away["at_patch_ends"] = {
+            "mesh_dependent": True,
+            **{name: _extreme(np.asarray(values)[near_end], x1[near_end], x2[near_end], kind)
+               for name, values, kind in quantities}}
+    return away
+
+
+def contact_answers(x1, x2, sigma_n):
+    """The peak contact pressure (positive) and its position."""
+    return {"peak_pressure": _extreme(-np.asarray(sigma_n), np.asarray(x1), np.asarray(x2),
+                                      TENSION)}
+
+
+def bond_answers(scene, x1, x2, sigma_n, sigma_t):
+    """Peel (the largest tensile sigma_n: the bond opens where it is positive), the
+    largest compression and the largest |shear| on one bond (the traction on the base)."""
+    return _maxima(scene, [("peel", sigma_n, TENSION), ("compression", sigma_n, COMPRESSION),
+                           ("shear", np.abs(sigma_t), MAGNITUDE)], x1, x2)
+
+
+def coating_answers(scene, nodes):
+    """The largest von Mises stress of a 2D patch and its position, from its nodes'
+    x1, x2, sigma_eq."""
+    return _maxima(scene, [("von_mises", nodes["sigma_eq"].to_numpy(), MAGNITUDE)],
+                   nodes["x1"], nodes["x2"])
+
+
+def fibre_stresses(fields, thickness):
+    """sigma11 at the shell's top and bottom faces and the mean transverse shear from its
+    forces: the strain is eps11 + xi3 chi11 through the thickness (freefem/shell.idp,
+    xi3 along the face's outward normal), so sigma11 = T11/h + 12 M11 xi3 / h^3, at
+    xi3 = +-h/2: T11/h +- 6 M11/h^2; the shear's mean is T13/h."""
+    membrane = fields["T11"].to_numpy() / thickness
+    bending = 6.0 * fields["M11"].to_numpy() / thickness ** 2
+    return membrane + bending, membrane - bending, fields["T13"].to_numpy() / thickness
+
+
+def shell_answers(scene, coating, fields):
+    """The extreme fibre stresses (tension and compression, top and bottom faces) and the
+    largest mean shear of a shell patch, from its fields (x1, x2, T11, T13, M11)."""
+    top, bottom, shear = fibre_stresses(fields, coating.thickness)
+    return _maxima(scene, [("top_tension", top, TENSION), ("top_compression", top, COMPRESSION),
+                           ("bottom_tension", bottom, TENSION),
+                           ("bottom_compression", bottom, COMPRESSION),
+                           ("mean_shear", np.abs(shear), MAGNITUDE)],
+                   fields["x1"], fields["x2"])
+
+
+def _where(extreme):
+    return f"{extreme['value']:.4g} at x1 = {extreme['x1']:.4g}"
+
+
+def describe(answers):
+    """The answers as lines for a person (values in the scene's stress unit)."""
+    lines = []
+    peak = answers["contact"]["peak_pressure"]
+    if peak:
+        lines.append(f"peak contact pressure {_where(peak)}")
+    for group in ("bonds", "coatings"):
+        for name, values in answers[group].items():
+            found = [f"{quantity.replace('_', ' ')} {_where(extreme)}"
+                     for quantity, extreme in values.items()
+                     if quantity != "at_patch_ends" and extreme]
+            ends = [f"{quantity.replace('_', ' ')} {extreme['value']:.4g}"
+                    for quantity, extreme in values.get("at_patch_ends", {}).items()
+                    if quantity != "mesh_dependent" and extreme]
+            lines.append(f"{name}: " + ", ".join(found or ["no stress"])
+                         + (f"; at patch ends (singular, mesh-dependent): {', '.join(ends)}"
+                            if ends else ""))
+    return lines
