@@ -6,7 +6,7 @@
 #   make stability  a sweep of 102 runs and maps of where each method converges
 #   make discrete   a cylinder over a coating in patches, both models (results/discrete.png)
 #   make adequacy   where each coating model is adequate, and model = "auto" checked
-#                   on 32 held-out scenes (results/adequacy/)
+#                   on 36 held-out scenes (results/adequacy/)
 # Both install what they need first (FreeFEM from Debian, a pinned Python venv).
 
 PYTHON  := .venv/bin/python
@@ -63,10 +63,13 @@ setup: .venv/.installed .freefem-installed
 	fi
 	@touch $@
 
-.venv/.installed: requirements.txt
+# The pinned dependencies, then orchestrate itself as an editable package
+# (`import orchestrate` from any directory; pyproject.toml).
+.venv/.installed: requirements.txt pyproject.toml
 	python3 -m venv .venv
 	$(PYTHON) -m pip install -q --upgrade pip
 	$(PYTHON) -m pip install -q -r requirements.txt
+	$(PYTHON) -m pip install -q --no-deps --no-build-isolation -e .
 	@touch $@
 
 run: setup
@@ -88,7 +91,7 @@ stability: setup
 	$(PYTHON) -m orchestrate.stability results/stability
 
 # The model error of each coating model over h2/a x E2/E (the paper's scene) and the
-# automatic choice on held-out scenes (about 30 minutes; finished scenes are kept in
+# automatic choice on held-out scenes (about 40 minutes; finished scenes are kept in
 # results/adequacy/*.csv, so an interrupted study resumes).
 adequacy: setup
 	$(PYTHON) -m orchestrate.adequacy

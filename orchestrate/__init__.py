@@ -6,3 +6,10 @@ import os
 # The driver's linear algebra is small (the interface); a multi-threaded BLAS would
 # spin on the cores the FreeFEM workers need (measured: 12.7 -> 9.1 ms per iteration).
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+# The Python API (orchestrate/api.py): ``orchestrate.solve(scene, settings)`` -> Result
+from .api import Result, solve  # noqa: E402
+from .scene import Scene, Settings  # noqa: E402
+from .scene_file import load_scene, paper_scene  # noqa: E402
+
+__all__ = ["Result", "Scene", "Settings", "load_scene", "paper_scene", "solve"]

@@ -24,8 +24,9 @@ import os
 import time
 
 import numpy as np
+import pandas as pd
 
-from . import freefem
+from . import answers, freefem
 from .contact import contact_half_width, contact_zones
 from .discretization import discretize
 from .errors import RunFailed  # noqa: F401  (raised here; callers import it from here too)
@@ -193,6 +194,7 @@ def _write_results(problem, loop, out_dir):
     scene = problem.scene
     zones = contact_zones(x_contact, sigma_contact)
     return {
+        "answers": _answers(problem, contact_rows, bond_rows, out_dir),
         "contact_force": contact_force,
         "interface_force": interface_force,
         "stamp_reaction": -indenter[LABELS["Stamp"]][1],
@@ -209,6 +211,29 @@ def _write_results(problem, loop, out_dir):
             (float(np.max(problem.interfaces[i].mismatch[stresses[i] < 0]))
              for i in layout.contact_indices if np.any(stresses[i] < 0)), default=0.0)),
     }
+
+
+def _answers(problem, contact_rows, bond_rows, out_dir):
+    """orchestrate/answers.py's values of the run: the contact, every bond (by its
+    interface's name) and every patch (by its subdomain's name)."""
+    scene = problem.scene
+    contact = _stack(contact_rows, ("x1", "x2", "sigma_n"))
+    bonds = {row["interface"][0]: answers.bond_answers(scene, row["x1"], row["x2"],
+                                                       row["sigma_n"], row["sigma_t"])
+             for row in bond_rows}
+    coatings = {}
+    for name, subdomain in problem.subdomains.items():
+        if not name.startswith("coating"):
+            continue
+        patch = scene.coatings[int(name[len("coating"):]) - 1]
+        if subdomain.kind == "shell":
+            fields = pd.read_csv(os.path.join(out_dir, f"{name}_fields.csv"))
+            coatings[name] = answers.shell_answers(scene, patch, fields)
+        else:
+            nodes = pd.read_csv(os.path.join(out_dir, f"{name}.csv"))
+            coatings[name] = answers.coating_answers(scene, nodes)
+    return {"contact": answers.contact_answers(contact["x1"], contact["x2"], contact["sigma_n"]),
+            "bonds": bonds, "coatings": coatings}
 
 
 def _half_width(scene, x, sigma, zones):

@@ -1,0 +1,95 @@
+"""The Python API: solve a scene and get its results as arrays, no output folder needed.
+
+    import orchestrate
+    result = orchestrate.solve(orchestrate.paper_scene(h2=0.125, E2=5.0))
+    result.contact                  # pandas: interface, x1, x2, s, sigma_n
+    result.answers["contact"]["peak_pressure"]
+    result.fields["coating1"]       # a patch's nodes (2D) or mid-line forces (shell)
+    result.save("run1")             # the files `python -m orchestrate solve --out run1` writes
+
+The run itself is the command line's (orchestrate/solve.py): same checks, same files;
+here it writes into a private temporary folder, which is read back and removed.
+"""
+
+from dataclasses import dataclass, field
+import io
+import os
+from pathlib import Path
+import tempfile
+
+import pandas as pd
+
+from . import solve as run
+from .folders import RunFolder
+from .scene import Scene, Settings
+from .scene_file import scene_and_settings
+
+TABLES = ("contact", "interface", "traces", "history")
+
+
+@dataclass
+class Result:
+    """A finished run: its summary (summary.json as a dict), its tables and fields as
+    pandas frames, and every file it wrote (name -> bytes) for ``save``."""
+
+    summary: dict
+    contact: pd.DataFrame
+    interface: pd.DataFrame
+    traces: pd.DataFrame
+    history: pd.DataFrame
+    fields: dict = field(default_factory=dict)   # subdomain name -> DataFrame
+    files: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def answers(self):
+        """What a coating engineer looks for (orchestrate/answers.py)."""
+        return self.summary["answers"]
+
+    def save(self, out_dir, overwrite=False):
+        """Write the run's files into ``out_dir`` (it appears once complete, as a run of
+        the command line does; ``overwrite`` replaces an earlier run's folder)."""
+        with RunFolder(out_dir, overwrite) as folder:
+            for name, data in self.files.items():
+                (Path(folder.scratch) / name).write_bytes(data)
+            folder.commit()
+        return Path(out_dir)
+
+
+def _scene_and_settings(scene, settings):
+    """A Scene or a scene file's path; Settings, a dict of settings values or None (over
+    a file's [settings])."""
+    if isinstance(settings, Settings):
+        if not isinstance(scene, Scene):
+            scene, _ = scene_and_settings(scene)
+        return scene, settings
+    values = dict(settings or {})
+    if isinstance(scene, Scene):
+        return scene, Settings(**values)
+    return scene_and_settings(scene, settings=values)
+
+
+def _read(folder):
+    files = {name: (folder / name).read_bytes() for name in sorted(os.listdir(folder))
+             if (folder / name).is_file()}
+    tables = {name: pd.read_csv(io.BytesIO(files[f"{name}.csv"])) if f"{name}.csv" in files
+              else pd.DataFrame() for name in TABLES}
+    fields = {}
+    for name in files:
+        stem = name[:-len("_fields.csv")] if name.endswith("_fields.csv") else name[:-len(".csv")]
+        if name.endswith(".csv") and stem not in TABLES and (
+                name.endswith("_fields.csv") or f"{stem}_reactions.txt" in files):
+            fields[stem] = pd.read_csv(io.BytesIO(files[name]))
+    return tables, fields, files
+
+
+def solve(scene, settings=None, progress=None):
+    """Solve ``scene`` (a Scene, or the path of a scene file) with ``settings`` (Settings,
+    a dict of setting values, or None: the defaults or the file's); return its Result.
+    Raises as orchestrate/solve.py's solve does: ParameterError before any work,
+    RunFailed (with the summary) if the loop does not converge, SystemFailure."""
+    scene, settings = _scene_and_settings(scene, settings)
+    with tempfile.TemporaryDirectory(prefix="orchestrate-api-") as scratch:
+        out = Path(scratch) / "run"
+        summary = run.solve(scene, settings, out, progress=progress)
+        tables, fields, files = _read(out)
+    return Result(summary=summary, fields=fields, files=files, **tables)

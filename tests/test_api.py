@@ -1,0 +1,79 @@
+"""The Python API (orchestrate/api.py) as a notebook user meets it: the package
+installed with `pip install -e .` into a fresh venv, imported from another directory,
+``orchestrate.solve`` returning arrays and frames without an output folder."""
+
+import json
+import os
+import subprocess
+import sys
+import sysconfig
+
+import numpy as np
+import pytest
+
+import orchestrate
+from tests.conftest import PROJECT_DIR
+
+USE = """
+import json, orchestrate
+result = orchestrate.solve(orchestrate.paper_scene(h2=0.125, E2=5.0))
+print(json.dumps({"module": orchestrate.__file__, "type": type(result.contact).__name__,
+                  "sigma_n": result.contact.sigma_n.tolist(),
+                  "peak": result.answers["contact"]["peak_pressure"]["value"]}))
+"""
+
+
+@pytest.fixture(scope="module")
+def api_result():
+    return orchestrate.solve(orchestrate.paper_scene(h2=0.125, E2=5.0))
+
+
+def test_a_fresh_venv_installs_the_package_and_solves_from_elsewhere(tmp_path, api_result):
+    """The fresh venv takes the pinned dependencies from the project's venv (a .pth
+    file: no network in a test) and installs only orchestrate itself."""
+    venv = tmp_path / "venv"
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=300)
+    python = venv / "bin" / "python"
+    site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                          capture_output=True, text=True, check=True).stdout.strip()
+    with open(os.path.join(site, "project_dependencies.pth"), "w") as pth:
+        pth.write(sysconfig.get_paths()["purelib"] + "\n")
+    # the build backend too (a venv of Python 3.11 brings an old setuptools of its own)
+    build_env = dict(os.environ, PYTHONPATH=sysconfig.get_paths()["purelib"])
+    install = subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-deps",
+                              "--no-build-isolation", "-e", str(PROJECT_DIR)],
+                             capture_output=True, text=True, timeout=600, env=build_env)
+    assert install.returncode == 0, install.stderr
+    elsewhere = tmp_path / "notebook"
+    elsewhere.mkdir()
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    run = subprocess.run([str(python), "-c", USE], cwd=elsewhere, env=env,
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    found = json.loads(run.stdout.strip().splitlines()[-1])
+    assert found["module"] == str(PROJECT_DIR / "orchestrate" / "__init__.py")
+    assert found["type"] == "DataFrame"
+    # the same run as in this process (same scene, settings, meshes) up to the solvers'
+    # round-off, which is not bit-reproducible between processes (measured 7e-13)
+    np.testing.assert_allclose(found["sigma_n"], api_result.contact.sigma_n.to_numpy(),
+                               rtol=1e-9)
+    assert found["peak"] == max(-np.array(found["sigma_n"]))
+
+
+def test_the_result_holds_the_run_and_saves_the_command_lines_files(tmp_path, api_result):
+    assert api_result.summary["converged"]
+    assert set(api_result.fields) == {"indenter", "base", "coating1"}
+    assert {"x1", "x2", "T11", "M11"} <= set(api_result.fields["coating1"].columns)
+    assert len(api_result.interface) and len(api_result.history) == api_result.summary["iterations"]
+    out = api_result.save(tmp_path / "saved")
+    assert sorted(os.listdir(out)) == sorted(api_result.files)
+    assert json.loads((out / "summary.json").read_text()) == api_result.summary
+    with pytest.raises(Exception, match="saved"):
+        api_result.save(tmp_path / "saved")          # a run's folder is never overwritten
+
+
+def test_settings_as_a_dict_and_a_scene_file(api_result):
+    from orchestrate.scene_file import SCENES_DIR
+    result = orchestrate.solve(SCENES_DIR / "cylinder.toml", {"eps_u": 1e-4})
+    assert result.summary["settings"]["eps_u"] == 1e-4
+    assert result.summary["total_force"] == pytest.approx(0.02, rel=1e-6)
