@@ -17,6 +17,7 @@ import sys
 import tomllib
 import traceback
 
+from .answers import describe
 from .errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT_INTERRUPTED,
                      EXIT_NOT_CONVERGED,
                      EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure)
@@ -129,6 +130,23 @@ def build_parser():
     plot = commands.add_parser("plot", help="plot the stresses of a finished run",
                                description="Write RUN/stresses.png from RUN's CSV files.")
     plot.add_argument("run", help="a folder written by `solve`")
+    plot_sweep = commands.add_parser(
+        "plot-sweep", help="plot a column of a sweep's runs.csv against another",
+        description="Draw column Y of SWEEP_DIR/runs.csv against column X, one line per value "
+                    "of BY (and of any other parameter that tells runs with the same X "
+                    "apart); runs without Y (not converged) are left out.")
+    plot_sweep.add_argument("sweep", metavar="SWEEP_DIR",
+                            help="a sweep's folder (or its runs.csv)")
+    plot_sweep.add_argument("--y", required=True, help="a column: an output "
+                            "(peak_contact_stress, iterations, wall_time_s, ...)")
+    plot_sweep.add_argument("--x", required=True, help="a column: a parameter (h2, E2, ...)")
+    plot_sweep.add_argument("--by", help="a column: one line per value (model, ...)")
+    plot_sweep.add_argument("--where", action="append", default=[], metavar="KEY=VALUE",
+                            help="only runs whose column KEY is VALUE (numbers to 1e-9; "
+                                 "an empty VALUE: an empty cell); repeatable")
+    plot_sweep.add_argument("--logx", action="store_true", help="logarithmic x axis")
+    plot_sweep.add_argument("--logy", action="store_true", help="logarithmic y axis")
+    plot_sweep.add_argument("--out", help="PNG file (default SWEEP_DIR/Y-X-BY.png)")
     return parser
 
 
@@ -197,6 +215,8 @@ def main(argv=None):
     try:
         if args.command == "plot":
             return _plot(args)
+        if args.command == "plot-sweep":
+            return _plot_sweep(args)
         if args.command == "sweep":
             return _sweep(args)
         return _solve(args)
@@ -221,6 +241,20 @@ def _plot(args):
     return EXIT_CONVERGED
 
 
+def _plot_sweep(args):
+    from .plot_sweep import plot_sweep
+    try:
+        path, notes = plot_sweep(args.sweep, args.y, args.x, args.by, args.where, args.out,
+                                 args.logx, args.logy)
+    except ParameterError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_REFUSED
+    for note in notes:
+        print(f"note: {note}", file=sys.stderr)
+    print(path)
+    return EXIT_CONVERGED
+
+
 def _solve(args):
     try:
         from .solve import solve         # loads gmsh: may fail for want of memory
@@ -241,9 +275,14 @@ def _solve(args):
               file=sys.stderr)
         return EXIT_FAILED
     for patch in (summary["model_choice"] or {}).get("patches", []):
-        _say(f"coating[{patch['patch']}]: model auto chose {patch['model']} (estimated error "
-             f"of the peak contact stress {100 * patch['estimated_error']:.2g} %, tolerance "
-             f"{100 * settings.model_tolerance:g} %; h2/a = {patch['h2_over_a']:.3g})")
+        estimate = (f"1D models not estimated: {patch['not_estimated']}"
+                    if patch["not_estimated"] else
+                    f"estimated error of the peak contact and bond stresses "
+                    f"{100 * patch['estimated_error']:.2g} %, tolerance "
+                    f"{100 * settings.model_tolerance:g} %")
+        _say(f"coating[{patch['patch']}]: model auto chose {patch['model']} ({estimate})")
+    for line in describe(summary["answers"]):
+        _say(line)
     descent = (f", descent {summary['descent']:.4e}" if scene.load.force is not None else "")
     _say(f"converged in {summary['iterations']} iterations, {summary['wall_time_s']:.1f} s; "
          f"contact force {summary['total_force']:.4e}{descent}, contact zones "

@@ -14,19 +14,43 @@ import pandas as pd  # noqa: E402
 from .errors import ParameterError  # noqa: E402
 
 
-def plot_run(run_dir, path=None):
-    """Write ``run_dir/stresses.png``: the contact stress of every contact interface
-    and the bond stresses (normal, shear) of every patch against x1/b."""
+def finished_summary(run_dir):
+    """The summary of the converged run in ``run_dir``; ParameterError, in one line, if
+    there is none (no such folder, no summary.json: an unfinished run, a run that did
+    not converge or failed)."""
+    if not os.path.isdir(run_dir):
+        raise ParameterError(f"{run_dir}: no such folder")
     try:
         with open(os.path.join(run_dir, "summary.json")) as f:
             summary = json.load(f)
-    except (OSError, ValueError):
-        raise ParameterError(f"{run_dir} holds no finished run (no readable summary.json)") from None
+    except OSError:
+        raise ParameterError(f"{run_dir} holds no finished run (no summary.json)") from None
+    except ValueError:
+        raise ParameterError(f"{run_dir}: its summary.json is not readable JSON") from None
+    if not isinstance(summary, dict):
+        raise ParameterError(f"{run_dir}: its summary.json is not a run's summary")
     if not summary.get("converged"):
-        raise ParameterError(f"{run_dir}: the run did not converge ({summary.get('status')}): "
-                             "there are no stresses to plot")
-    contact = pd.read_csv(os.path.join(run_dir, "contact.csv"))
-    interface = pd.read_csv(os.path.join(run_dir, "interface.csv"))
+        status = summary.get("status")
+        reason = (str(summary.get("reason") or "").splitlines() or [""])[0]  # one line
+        outcome = (f"failed: {reason}" if status == "error" else
+                   f"did not converge ({status}{': ' + reason if reason else ''})")
+        raise ParameterError(f"{run_dir}: the run {outcome}; there are no stresses to plot")
+    return summary
+
+
+def _read_stresses(run_dir, name):
+    try:
+        return pd.read_csv(os.path.join(run_dir, name))
+    except (OSError, ValueError, pd.errors.EmptyDataError):
+        raise ParameterError(f"{run_dir}: {name} is missing or unreadable") from None
+
+
+def plot_run(run_dir, path=None):
+    """Write ``run_dir/stresses.png``: the contact stress of every contact interface
+    and the bond stresses (normal, shear) of every patch against x1/b."""
+    summary = finished_summary(run_dir)
+    contact = _read_stresses(run_dir, "contact.csv")
+    interface = _read_stresses(run_dir, "interface.csv")
     figure, axes = plt.subplots(figsize=(6.4, 4.0))
     for k, (name, part) in enumerate(contact.groupby("interface", sort=False)):
         axes.plot(part.x1, part.sigma_n, color="C0",

@@ -18,17 +18,19 @@ scene file (relative to the sweep file; default: the paper's scene):
     model = "shell"
     h2 = 0.0625
 
-Every point is one run folder, results/<name>/runs/<id>/, written as `solve` writes it
-(id: a hash of the point's values, so a point keeps its folder when the sweep grows):
-it appears only once complete, so re-running a sweep skips it, and a sweep interrupted
-by Ctrl-C, a killed driver or a full disk loses no finished run. Every point is checked
-before the first run (its scene, settings and size): a bad one refuses the sweep, all
-bad points named. Runs that diverge or stagnate are rows with their reason; runs that
-fail for a reason outside their numbers (a worker killed, a full disk) are rows with
-the cause, and are run again when the sweep is resumed (``--retry-failed``: those that
-did not converge too). All summaries gather into results/<name>/runs.csv, one row per
-point in the file's order. A lock in the sweep's folder keeps a second sweep out; the
-sweep touches nothing in it but its runs and its table.
+Every point is one run folder, results/<name>/runs/<run>/, written as `solve` writes it
+and named by the point's values (orchestrate/run_names.py), e.g.
+eps_u=1e-06_model=shell_h2=1, so a point keeps its folder when the sweep grows (the
+hash-named folders of older sweeps are renamed). A run folder appears only once
+complete, so re-running a sweep skips it, and a sweep interrupted by Ctrl-C, a killed
+driver or a full disk loses no finished run. Every point is checked before the first run
+(its scene, settings and size): a bad one refuses the sweep, all bad points named. Runs
+that diverge or stagnate are rows with their reason; runs that fail for a reason outside
+their numbers (a worker killed, a full disk) are rows with the cause, and are run again
+when the sweep is resumed (``--retry-failed``: those that did not converge too). All
+summaries gather into results/<name>/runs.csv, one row per point in the file's order
+(its column "id": the run folder's name). A lock in the sweep's folder keeps a second
+sweep out; the sweep touches nothing in it but its runs and its table.
 
 Engines: local processes (default, one run per core), or Dask distributed (``--engine
 dask`` with ``--scheduler tcp://HOST:PORT`` for a cluster sharing the results folder, or
@@ -38,7 +40,6 @@ more, then recorded as failed.
 """
 
 import concurrent.futures
-import hashlib
 import json
 import multiprocessing
 import os
@@ -56,6 +57,7 @@ from .folders import (RunFolder, hold_lock, release_lock, remove_dead_run_leftov
                       remove_dead_work_folders)
 from .outputs import write_json
 from .paths import RESULTS_DIR
+from .run_names import legacy_name, run_names, values_hash
 from .scene import Settings, scene_from_dict, to_dict
 from .scene_file import is_scene_key, read_toml, scene_and_settings, shorthand_values
 
@@ -139,26 +141,35 @@ def point_scene(values, scene_dir="."):
     return scene_and_settings(scene_file, overrides, settings)
 
 
-def point_id(values):
-    """A short stable name for a point: the hash of its values."""
-    text = json.dumps({k: values[k] for k in sorted(values)}, sort_keys=True)
-    return hashlib.sha1(text.encode()).hexdigest()[:12]
+def named_points(points):
+    """(run folder name, values) of each distinct point, in the points' order."""
+    distinct = list({values_hash(values): values for values in points}.values())
+    return list(zip(run_names(distinct), distinct))
+
+
+def adopt_legacy_folders(runs_dir, runs):
+    """Give the run folders of a sweep written before folders were named by their values
+    (the hash of the values, legacy_name) their new names, so that their runs count as
+    done. The caller holds the sweep's lock: no run writes into these folders."""
+    for name, values in runs:
+        old, new = Path(runs_dir) / legacy_name(values), Path(runs_dir) / name
+        if old.is_dir() and not os.path.lexists(new):
+            os.rename(old, new)
 
 
 # ---- one run, in a worker process -----------------------------------------------------
 
-def run_point(values, sweep_dir, scene_dir=".", retry_failed=False):
-    """Solve one point into sweep_dir/runs/<id>/ unless it is done; return its id.
+def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False):
+    """Solve one point into sweep_dir/runs/<name>/ unless it is done; return its name.
 
     Runs in an engine's worker process; never raises for a failed run: the reason goes
     into the run's summary.json (a run that failed outside its numbers, "error", is
     run again; with ``retry_failed`` one that did not converge too)."""
     from .errors import RunFailed, SystemFailure
 
-    identifier = point_id(values)
-    folder = Path(sweep_dir) / "runs" / identifier
+    folder = Path(sweep_dir) / "runs" / name
     if finished(folder, retry_failed):
-        return identifier
+        return name
     try:
         from .solve import solve               # a worker process imports what it needs
         scene, settings = point_scene(values, scene_dir)
@@ -172,7 +183,7 @@ def run_point(values, sweep_dir, scene_dir=".", retry_failed=False):
     except Exception as error:                 # a bug: this run's row, not the sweep's end
         write_report(folder, {"status": "error", "converged": False,
                               "reason": f"internal error: {type(error).__name__}: {error}"})
-    return identifier
+    return name
 
 
 def finished(folder, retry_failed=False):
@@ -206,6 +217,15 @@ def _worker_init(driver):
 
 # ---- the table ------------------------------------------------------------------------
 
+# a run's outcome in its row, from its summary.json; the other columns say what was run
+SUMMARY_COLUMNS = ("status", "reason", "converged", "iterations", "final_relative_change",
+                   "error_estimate", "active_set_changes", "contact_force", "total_force",
+                   "descent", "interface_force", "peak_contact_stress",
+                   "peak_interface_stress", "contact_half_width", "wall_time_s",
+                   "setup_time_s", "time_per_iteration_s")
+OUTCOME_COLUMNS = SUMMARY_COLUMNS + ("model_chosen", "model_error_estimate")
+
+
 def _model_choice_columns(choice):
     """A run with "auto" patches: the models chosen (one per auto patch, "/"-joined) and
     the largest estimated model error among them."""
@@ -215,16 +235,16 @@ def _model_choice_columns(choice):
             "model_error_estimate": max(p["estimated_error"] for p in choice["patches"])}
 
 
-def gather(sweep_dir, points):
-    """One row per point: its values, the scene and settings, outcome and figures."""
+def gather(sweep_dir, runs):
+    """One row per (name, values) run, in their order: the run folder's name ("id"), the
+    point's values, the scene and settings, outcome and figures."""
     rows = []
-    for values in points:
-        identifier = point_id(values)
-        path = Path(sweep_dir) / "runs" / identifier / "summary.json"
+    for name, values in runs:
+        path = Path(sweep_dir) / "runs" / name / "summary.json"
         if not path.exists():
             continue
         summary = json.loads(path.read_text())
-        row = {"id": identifier, **values}
+        row = {"id": name, **values}
         if summary.get("scene"):
             scene = scene_from_dict(summary["scene"])
             row.update(shorthand_values(scene))
@@ -232,17 +252,30 @@ def gather(sweep_dir, points):
         # a run that could not run has no settings: its values over the defaults
         settings = summary.get("settings") or {f.name: values.get(f.name, f.default)
                                                for f in fields(Settings)}
-        row.update({f.name: settings[f.name] for f in fields(Settings)})
-        for key in ("status", "reason", "converged", "iterations", "final_relative_change",
-                    "error_estimate",
-                    "active_set_changes", "contact_force", "total_force", "descent",
-                    "interface_force", "peak_contact_stress", "peak_interface_stress",
-                    "contact_half_width", "wall_time_s", "setup_time_s",
-                    "time_per_iteration_s"):
-            row[key] = summary.get(key)
+        # a run older than a setting has no value for it: an empty cell
+        row.update({f.name: settings.get(f.name) for f in fields(Settings)})
+        row.update({key: summary.get(key) for key in SUMMARY_COLUMNS})
         row.update(_model_choice_columns(summary.get("model_choice")))
+        row.update(_answer_columns(summary.get("answers")))
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _answer_columns(answers):
+    """orchestrate/answers.py's values away from the patches' ends, a column for each
+    value and its x1: peak_pressure, bond-coating1.peel, coating1.von_mises, ..."""
+    if not answers:
+        return {}
+    columns = {}
+    found = {"": answers["contact"], **answers["bonds"], **answers["coatings"]}
+    for owner, values in found.items():
+        for quantity, extreme in values.items():
+            if quantity == "at_patch_ends":
+                continue
+            name = f"{owner}.{quantity}" if owner else quantity
+            columns[name] = extreme["value"] if extreme else None
+            columns[f"{name}_x1"] = extreme["x1"] if extreme else None
+    return columns
 
 
 def _flatten(data, prefix=""):
@@ -261,8 +294,8 @@ def _flatten(data, prefix=""):
     return flat
 
 
-def write_table(sweep_dir, points):
-    table = gather(sweep_dir, points)
+def write_table(sweep_dir, runs):
+    table = gather(sweep_dir, runs)
     path = Path(sweep_dir) / "runs.csv"
     partial = path.with_name(".runs.csv.partial")
     table.to_csv(partial, index=False)
@@ -305,7 +338,8 @@ class Progress:
 # ---- engines --------------------------------------------------------------------------
 
 def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False):
-    """Local worker processes, at most ``jobs`` runs at once.
+    """Local worker processes, at most ``jobs`` runs at once; ``pending`` holds (name,
+    values) pairs.
 
     A worker process that dies breaks its pool, and which of the runs in flight it held
     is unknown: each of them is tried again alone, in a new pool. A run whose worker
@@ -320,7 +354,7 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False)
         running = {}
 
         def submit(source):                    # taken from its list once submitted
-            future = pool.submit(run_point, source[0], str(sweep_dir), str(scene_dir),
+            future = pool.submit(run_point, *source[0], str(sweep_dir), str(scene_dir),
                                  retry_failed)
             running[future] = source.pop(0)
         try:
@@ -335,21 +369,21 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False)
                 done, _ = concurrent.futures.wait(running, return_when="FIRST_COMPLETED")
                 for future in done:
                     future.result()            # BrokenProcessPool: a worker died
-                    values = running.pop(future)
-                    progress.update(done=1, failed=_failed(sweep_dir, values),
+                    name, _ = running.pop(future)
+                    progress.update(done=1, failed=_failed(sweep_dir, name),
                                     running=len(running) + min(len(queue), jobs - len(running)))
         except concurrent.futures.process.BrokenProcessPool:
             _kill_pool(pool)                  # the others too: their runs are tried again
             if len(running) != 1:
                 alone = list(running.values()) + alone
             else:
-                (values,) = running.values()
-                identifier = point_id(values)
-                deaths[identifier] = deaths.get(identifier, 0) + 1
-                if deaths[identifier] < ATTEMPTS:
-                    alone.insert(0, values)
+                (run,) = running.values()
+                name = run[0]
+                deaths[name] = deaths.get(name, 0) + 1
+                if deaths[name] < ATTEMPTS:
+                    alone.insert(0, run)
                 else:
-                    write_report(Path(sweep_dir) / "runs" / identifier, {
+                    write_report(Path(sweep_dir) / "runs" / name, {
                         "status": "error", "converged": False,
                         "reason": f"the worker process running it died {ATTEMPTS} times "
                                   "while it ran alone (killed, or out of memory)"})
@@ -384,26 +418,26 @@ def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retr
         n_workers=jobs, threads_per_worker=1, processes=True, dashboard_address=None)
     client = Client(scheduler or cluster)
     try:
-        futures = {client.submit(run_point, values, str(sweep_dir), str(scene_dir),
-                                 retry_failed, pure=False): values for values in pending}
+        futures = {client.submit(run_point, name, values, str(sweep_dir), str(scene_dir),
+                                 retry_failed, pure=False): name for name, values in pending}
         progress.update(running=min(jobs, len(futures)))
         for future in as_completed(futures):
-            values = futures[future]
+            name = futures[future]
             try:
                 future.result()
             except KilledWorker:
-                write_report(Path(sweep_dir) / "runs" / point_id(values), {
+                write_report(Path(sweep_dir) / "runs" / name, {
                     "status": "error", "converged": False,
                     "reason": "the Dask workers running it kept dying (killed, or out of memory)"})
-            progress.update(done=1, failed=_failed(sweep_dir, values))
+            progress.update(done=1, failed=_failed(sweep_dir, name))
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
 
 
-def _failed(sweep_dir, values):
-    return int(run_status(Path(sweep_dir) / "runs" / point_id(values)) != "converged")
+def _failed(sweep_dir, name):
+    return int(run_status(Path(sweep_dir) / "runs" / name) != "converged")
 
 
 ENGINES = ("local", "dask")
@@ -430,13 +464,16 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
                      "another sweep is running in it")
     try:
         remove_dead_run_leftovers(sweep_dir / "runs")     # of a sweep killed before
-        unique = list({point_id(p): p for p in points}.values())
-        pending = [p for p in unique
-                   if not finished(sweep_dir / "runs" / point_id(p), retry_failed)]
+        runs = named_points(points)
+        adopt_legacy_folders(sweep_dir / "runs", runs)
+        pending = [(name, values) for name, values in runs
+                   if not finished(sweep_dir / "runs" / name, retry_failed)]
         jobs = jobs or os.cpu_count() or 1
-        progress = Progress(len(unique), stream)
-        progress.done = len(unique) - len(pending)
-        progress.failed = sum(_failed(sweep_dir, p) for p in unique if p not in pending)
+        progress = Progress(len(runs), stream)
+        progress.done = len(runs) - len(pending)
+        waiting = {name for name, _ in pending}
+        progress.failed = sum(_failed(sweep_dir, name) for name, _ in runs
+                              if name not in waiting)
         try:
             if pending:
                 if engine == "dask":
@@ -447,7 +484,7 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
             progress.close()
             remove_dead_run_leftovers(sweep_dir / "runs")  # of runs whose process died
             remove_dead_work_folders()
-            table = write_table(sweep_dir, unique)
+            table = write_table(sweep_dir, runs)
     finally:
         release_lock(lock)
     return table

@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.sweep import load_sweep, point_id, run_sweep
+from orchestrate.sweep import load_sweep, named_points, run_sweep
 from tests.conftest import PROJECT_DIR
 from tests.test_lifecycle import _processes_mentioning
 
@@ -70,13 +70,16 @@ def _same_table(a, b):
             assert a[column].tolist() == b[column].tolist(), column
 
 
-def test_every_run_is_a_row_failures_with_their_reason(uninterrupted):
+def test_every_run_is_a_row_failures_with_their_reason(sweep_file, uninterrupted):
     table, out = uninterrupted
     assert len(table) == RUNS and len(pd.read_csv(out / "runs.csv")) == RUNS
     assert (table.status == "converged").sum() == 9
     stopped = table[table.status == "max_iterations"]
     assert len(stopped) == 1 and not stopped.converged.iloc[0]
     assert sorted(os.listdir(out / "runs")) == sorted(table.id)
+    _, points = load_sweep(sweep_file)           # rows in the file's order, not the names'
+    assert table.id.tolist() == [name for name, _ in named_points(points)]
+    assert table.id.iloc[0] == "eps_u=1e-06_model=shell_h2=0.25_E2=1"
     converged = table[table.converged.astype(bool)]
     assert (converged.final_relative_change < converged.eps_u).all()
     assert not table[~table.converged.astype(bool)].status.isin(["converged"]).any()
@@ -172,7 +175,8 @@ def test_points_keep_their_names_when_a_sweep_grows(tmp_path):
     small.write_text('[grid]\nh2 = [0.5]\nE2 = [1.0]\n')
     large.write_text('[grid]\nh2 = [0.25, 0.5]\nE2 = [1.0, 5.0]\n')
     (_, first), (_, second) = load_sweep(small), load_sweep(large)
-    assert {point_id(p) for p in first} <= {point_id(p) for p in second}
+    names = [{name for name, _ in named_points(points)} for points in (first, second)]
+    assert names[0] == {"h2=0.5_E2=1"} and names[0] < names[1]
 
 
 def test_a_sweep_takes_a_scene_file_and_dotted_keys(tmp_path):
@@ -309,3 +313,14 @@ def _is_descendant(pid, ancestor):
     except OSError:
         pass
     return False
+
+
+def test_every_row_has_the_runs_answers(uninterrupted):
+    """runs.csv carries summary.json's answers (orchestrate/answers.py), away from the
+    patches' ends: the peak pressure is the peak contact stress's magnitude."""
+    table, _ = uninterrupted
+    done = table[table.converged.astype(bool)]
+    assert len(done)
+    np.testing.assert_allclose(done.peak_pressure, -done.peak_contact_stress, rtol=1e-12)
+    assert done["bond-coating1.compression"].lt(0).all()
+    assert done["bond-coating1.shear"].gt(0).all()
