@@ -148,9 +148,10 @@ def constrained_modulus(E, nu):
     return E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
 
 
-def scene_ratios(scene, coating):
-    """(x, c, q, g) of a patch (the module's docstring)."""
-    a = contact_half_width(scene)
+def scene_ratios(scene, coating, a=None):
+    """(x, c, q, g) of a patch (the module's docstring); a: the scene's
+    contact_half_width, if known."""
+    a = contact_half_width(scene) if a is None else a
     modulus = contact_modulus(scene)
     base = scene.base
     x = math.inf if a == 0 else coating.thickness / a
@@ -160,26 +161,27 @@ def scene_ratios(scene, coating):
     return x, c, q, g
 
 
-def not_estimated(scene, coating):
+def not_estimated(scene, coating, a=None):
     """Why the 1D models' errors are not estimated for this patch (None: they are)."""
     low, high = NU2_CALIBRATED
     if not low <= coating.nu <= high:
         return f"coating Poisson ratio {coating.nu:g} outside the calibrated [{low:g}, {high:g}]"
-    a = contact_half_width(scene)
+    a = contact_half_width(scene) if a is None else a
     for end in scene.patch_ends(coating):
         if a > 0 and abs(end - scene.indenter.centre) <= a + END_MARGIN * coating.thickness:
             return f"patch end x1 = {end:g} within the contact (estimated half-width {a:.3g})"
     return None
 
 
-def estimated_errors(scene, coating):
+def estimated_errors(scene, coating, a=None):
     """{model: {"contact": |e|, "bond": |e|}} of a patch (the module's docstring); a 1D
     model's is None where it is not estimated (not_estimated)."""
-    x, c, q, g = scene_ratios(scene, coating)
-    if math.isinf(x):                         # no load, no contact: every model is exact
-        return {model: {"contact": 0.0, "bond": 0.0} for model in MODELS}
+    a = contact_half_width(scene) if a is None else a
+    x, c, q, g = scene_ratios(scene, coating, a)
     exact = {"contact": 0.0, "bond": 0.0}
-    if not_estimated(scene, coating):
+    if math.isinf(x):                         # no load, no contact: every model is exact
+        return {model: dict(exact) for model in MODELS}
+    if not_estimated(scene, coating, a):
         return {"shell": None, "stretch_shell": None, "elastic": exact}
 
     def shell(k1, k2, k3, k4):
@@ -215,7 +217,7 @@ def choose_models(scene, settings):
     patches = []
     for n in auto:
         coating = scene.coatings[n]
-        errors = estimated_errors(scene, coating)
+        errors = estimated_errors(scene, coating, a)
         unknowns = {}
         for model in FIDELITY:
             trial = list(models)
@@ -227,7 +229,7 @@ def choose_models(scene, settings):
         models[n] = chosen
         patches.append({"patch": n + 1, "model": chosen,
                         "estimated_error": worst_error(errors[chosen]),
-                        "not_estimated": not_estimated(scene, coating),
+                        "not_estimated": not_estimated(scene, coating, a),
                         "h2_over_a": coating.thickness / a if a else None,
                         "estimated_errors": errors, "estimated_unknowns": unknowns})
     report = {"tolerance": tolerance, "contact_half_width_estimate": a,
