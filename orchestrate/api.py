@@ -11,7 +11,7 @@ The run itself is the command line's (orchestrate/solve.py): same checks, same f
 here it writes into a private temporary folder, which is read back and removed.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 import io
 import os
 from pathlib import Path
@@ -20,6 +20,7 @@ import tempfile
 import pandas as pd
 
 from . import solve as run
+from .errors import ParameterError
 from .folders import RunFolder
 from .scene import Scene, Settings
 from .scene_file import scene_and_settings
@@ -63,6 +64,11 @@ def _scene_and_settings(scene, settings):
             scene, _ = scene_and_settings(scene)
         return scene, settings
     values = dict(settings or {})
+    known = {f.name for f in fields(Settings)}
+    for key in values:
+        if key not in known:
+            raise ParameterError(f"settings: unknown setting {key!r} (known: "
+                                 f"{', '.join(sorted(known))})", key)
     if isinstance(scene, Scene):
         return scene, Settings(**values)
     return scene_and_settings(scene, settings=values)

@@ -77,3 +77,9 @@ def test_settings_as_a_dict_and_a_scene_file(api_result):
     result = orchestrate.solve(SCENES_DIR / "cylinder.toml", {"eps_u": 1e-4})
     assert result.summary["settings"]["eps_u"] == 1e-4
     assert result.summary["total_force"] == pytest.approx(0.02, rel=1e-6)
+
+
+def test_an_unknown_setting_is_refused_by_name_before_any_work():
+    from orchestrate.errors import ParameterError
+    with pytest.raises(ParameterError, match="unknown setting 'bogus'"):
+        orchestrate.solve(orchestrate.paper_scene(), {"bogus": 1})
