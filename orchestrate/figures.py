@@ -8,6 +8,11 @@ needs from the runs' summaries (model, h2, E2), so the run lists live in one pla
         solid: shell model, dashed: 2D coating model.
   fig4: sigma_23n/E on S23; panels E2 = 5E, E; curves h2 = b ... b/16; both models.
   fig5: isolines of sigma_eq/E in the 2D coating; panels E2 = E/5, E, 5E; h2 = b ... b/8.
+Stresses are drawn in units of 1e-4 E (STRESS_UNIT); the data files keep them in E.
+Fig. 5 contours the nodal values of coating1.csv (recovered by freefem/recovery.idp) on
+the coating's own P2 triangles (coating1_cells.csv): on each, the quadratic its six
+nodal values define (p2_triangulation). Every panel is stretched vertically by b/h2, so
+that all are as high as h2 = b (each title says so).
 """
 
 import argparse
@@ -18,7 +23,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
+from matplotlib.tri import Triangulation  # noqa: E402
 
 from .paths import RESULTS_DIR  # noqa: E402
 from .scene import scene_from_dict  # noqa: E402
@@ -32,6 +40,8 @@ FIGURE_SCENES = sorted(
     | {("elastic", h2, E2) for h2 in FIGURE_HEIGHTS[:4] for E2 in (0.2, 1.0, 5.0)})
 
 LINESTYLE = {"shell": "-", "elastic": "--"}
+STRESS_UNIT = 1e-4          # stresses are drawn in units of 1e-4 E
+UNIT_LABEL = r"$10^{-4}\,E$"
 MODEL_NAME = {"shell": "shell", "elastic": "2D coating"}
 
 
@@ -89,7 +99,8 @@ def _stress_curves(runs, file, panel_key, panel_values, curve_key, curve_values,
                 if match.empty:
                     continue
                 table = pd.read_csv(os.path.join(match.folder.iloc[0], file))
-                axis.plot(table.x1, table.sigma_n, LINESTYLE[model], color=colours[number - 1],
+                axis.plot(table.x1, table.sigma_n / STRESS_UNIT, LINESTYLE[model],
+                          color=colours[number - 1],
                           label=f"{number}: {title_of(curve)}, {MODEL_NAME[model]}")
                 data.append(pd.DataFrame({panel_key: panel, curve_key: curve, "curve": number,
                                           "model": model, "x1": table.x1,
@@ -106,25 +117,55 @@ def _stress_curves(runs, file, panel_key, panel_values, curve_key, curve_values,
 
 def fig3(runs, out_dir):
     figure, data = _stress_curves(runs, "contact.csv", "h2", [1.0, 0.125], "E2", [5.0, 1.0],
-                                  r"$\sigma_{12n}/E$ on $S_{12}$", _label_E2)
+                                  rf"$\sigma_{{12n}}$ / ({UNIT_LABEL}) on $S_{{12}}$", _label_E2)
     _save(figure, "fig3", data, out_dir)
 
 
 def fig4(runs, out_dir):
     figure, data = _stress_curves(runs, "interface.csv", "E2", [5.0, 1.0], "h2",
                                   [1.0, 0.5, 0.25, 0.125, 0.0625],
-                                  r"$\sigma_{23n}/E$ on $S_{23}$", _label_h2)
+                                  rf"$\sigma_{{23n}}$ / ({UNIT_LABEL}) on $S_{{23}}$", _label_h2)
     _save(figure, "fig4", data, out_dir)
 
 
 def coating_field(folder):
-    """Nodal sigma_eq of the 2D coating: x1, x2 and sigma_eq (coating1.csv)."""
-    return pd.read_csv(os.path.join(folder, "coating1.csv"))
+    """The 2D coating's nodes (x1, x2, u1, u2, sigma_eq, s11, ...: coating1.csv) and its
+    P2 triangles (six node rows each, VTK's triangle6 order: coating1_cells.csv)."""
+    return (pd.read_csv(os.path.join(folder, "coating1.csv")),
+            pd.read_csv(os.path.join(folder, "coating1_cells.csv")).to_numpy())
+
+
+def p2_triangulation(x, y, cells, values, n=6):
+    """The P2 field of nodal ``values`` on the P2 triangles ``cells`` (six node indices
+    each, VTK's triangle6 order: vertices, then the midpoints of edges 01, 12, 20),
+    sampled on n x n sub-triangles of each: (Triangulation, values at its points). With
+    n = 2 the points are the nodes themselves (each triangle cut into four); larger n
+    draws the quadratic between them, as ParaView draws a triangle6."""
+    points = [(i, j) for i in range(n + 1) for j in range(n + 1 - i)]
+    number = {point: k for k, point in enumerate(points)}
+    lam = np.array([[1 - (i + j) / n, i / n, j / n] for i, j in points])
+    l0, l1, l2 = lam.T
+    basis = np.column_stack([l0 * (2 * l0 - 1), l1 * (2 * l1 - 1), l2 * (2 * l2 - 1),
+                             4 * l0 * l1, 4 * l1 * l2, 4 * l2 * l0])
+    sub = [(number[i, j], number[i + 1, j], number[i, j + 1])
+           for i in range(n) for j in range(n - i)]
+    sub += [(number[i + 1, j], number[i + 1, j + 1], number[i, j + 1])
+            for i in range(n) for j in range(n - 1 - i)]
+    triangles = (np.array(sub)[None] + len(points) * np.arange(len(cells))[:, None, None])
+    px = (lam @ x[cells[:, :3]].T).T.ravel()          # straight-sided: linear in lam
+    py = (lam @ y[cells[:, :3]].T).T.ravel()
+    pv = (basis @ values[cells].T).T.ravel()
+    size = max(np.ptp(x), np.ptp(y)) * 1e-9           # a point shared by triangles: once
+    key = np.round(np.column_stack([px, py]) / size).astype(np.int64)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    return (Triangulation(px[first], py[first], inverse.ravel()[triangles.reshape(-1, 3)]),
+            pv[first])
 
 
 def fig5(runs, out_dir):
     moduli, heights = [0.2, 1.0, 5.0], [1.0, 0.5, 0.25, 0.125]
-    figure, axes = plt.subplots(len(heights), len(moduli), figsize=(13, 8), squeeze=False)
+    figure, axes = plt.subplots(len(heights), len(moduli), figsize=(14, 10.5), squeeze=False,
+                                layout="constrained")
     data = []
     for column, E2 in enumerate(moduli):
         for row, h2 in enumerate(heights):
@@ -133,24 +174,33 @@ def fig5(runs, out_dir):
             if match.empty:
                 axis.set_visible(False)
                 continue
-            field = coating_field(match.folder.iloc[0])
+            field, cells = coating_field(match.folder.iloc[0])
             height = match.height.iloc[0]
             local = field.x2 - height
-            contours = axis.tricontour(field.x1, local, field.sigma_eq, levels=10,
-                                       linewidths=0.8, cmap="viridis")
-            axis.clabel(contours, fontsize=5, fmt="%.1e")
+            values = field.sigma_eq.to_numpy() / STRESS_UNIT
+            mesh, drawn = p2_triangulation(field.x1.to_numpy(), local.to_numpy(), cells, values)
+            levels = MaxNLocator(9).tick_values(values.min(), values.max())
+            filled = axis.tricontourf(mesh, drawn, levels=levels, cmap="viridis", alpha=0.85)
+            lines = axis.tricontour(mesh, drawn, levels=levels, colors="k", linewidths=0.6)
+            axis.clabel(lines, fontsize=7, fmt="%g", inline_spacing=2)
+            colour_bar = figure.colorbar(filled, ax=axis, fraction=0.05, pad=0.01)
+            colour_bar.ax.tick_params(labelsize=7)
             peak = field.sigma_eq.idxmax()
-            axis.plot(field.x1[peak], local[peak], "r*", markersize=8)
+            axis.plot(field.x1[peak], local[peak], "r*", markersize=10, clip_on=False, zorder=5)
+            stretch = 1.0 / h2
+            axis.set_aspect(stretch)            # every panel as high as h2 = b
             axis.set_xlim(0, 2)
-            axis.set_title(f"$E_2$ = {_label_E2(E2)}, $h_2$ = {_label_h2(h2)}: max "
-                           f"{field.sigma_eq.max():.2e}", fontsize=8)
+            axis.set_ylim(0, h2)
+            axis.tick_params(labelsize=8)
+            axis.set_title(f"$E_2$ = {_label_E2(E2)}, $h_2$ = {_label_h2(h2)}"
+                           f" (vertical x{stretch:g}): max {values.max():.2f}", fontsize=9)
             if column == 0:
                 axis.set_ylabel(r"$(x_2 - h)/b$")
             if row == len(heights) - 1:
                 axis.set_xlabel(r"$x_1/b$")
             data.append(field.assign(E2=E2, h2=h2)[["E2", "h2", "x1", "x2", "sigma_eq"]])
-    figure.suptitle(r"$\sigma_{eq}/E$ in the 2D coating (red star: maximum)")
-    figure.tight_layout()
+    figure.suptitle(rf"$\sigma_{{eq}}$ / ({UNIT_LABEL}) in the 2D coating (red star: maximum; "
+                    r"each panel stretched vertically by $b/h_2$)")
     _save(figure, "fig5", pd.concat(data, ignore_index=True), out_dir)
 
 

@@ -12,6 +12,7 @@ import meshio
 import numpy as np
 import pandas as pd
 
+from .answers import fibre_stresses
 from .errors import SystemFailure, system_failure
 
 
@@ -50,19 +51,17 @@ def write_csv(path, columns):
 
 def check_written(prefix, kind, written):
     """Raise SystemFailure unless a worker's files next to ``prefix`` are whole: as many
-    rows, points and lines as it reported writing (body: CSV rows, VTU points, reaction
+    rows and lines as it reported writing (body: nodal CSV rows, cell rows, reaction
     lines; shell: field rows). FreeFEM does not report a failed write; a full disk or a
     file size limit leaves its files short."""
-    expected = ({f"{prefix}.csv": written[0] + 1, f"{prefix}_reactions.txt": written[2]}
+    expected = ({f"{prefix}.csv": written[0] + 1, f"{prefix}_cells.csv": written[1] + 1,
+                 f"{prefix}_reactions.txt": written[2]}
                 if kind == "body" else {f"{prefix}_fields.csv": written[0] + 1})
     for path, lines in expected.items():
         found = _line_count(path)
         if found != lines:
             raise SystemFailure(f"{os.path.basename(path)} is incomplete ({found} of {lines} "
                                 "lines): the disk is full or a file size limit was reached")
-    if kind == "body" and not _ends_with(f"{prefix}.vtu", b"</VTKFile>"):
-        raise SystemFailure(f"{os.path.basename(prefix)}.vtu is incomplete: the disk is "
-                            "full or a file size limit was reached")
 
 
 def _line_count(path):
@@ -71,17 +70,6 @@ def _line_count(path):
             return sum(1 for _ in f)
     except OSError:
         return 0
-
-
-def _ends_with(path, tail):
-    try:
-        with open(path, "rb") as f:
-            f.seek(0, os.SEEK_END)
-            size = f.tell()
-            f.seek(max(0, size - 256))
-            return f.read().rstrip().endswith(tail)
-    except OSError:
-        return False
 
 
 def write_history(path, history):
@@ -101,10 +89,39 @@ def read_reactions(path):
     return reactions
 
 
+# The stress components of a body's nodal CSV (and VTU), after x1, x2, u1, u2, sigma_eq.
+STRESS_COMPONENTS = ("s11", "s22", "s12", "s33")
+
+
+def write_body_fields(prefix):
+    """Write ``prefix.vtu`` for ParaView from a body worker's ``prefix.csv`` (the P2 nodes:
+    x1, x2, u1, u2, sigma_eq, s11, s22, s12, s33) and ``prefix_cells.csv`` (six nodes per
+    triangle, VTK's triangle6 order): quadratic triangles in double precision with the
+    displacement, the stress tensor (3 x 3, plane strain: s13 = s23 = 0; ParaView's
+    tensor), its components and sigma_eq."""
+    nodes = pd.read_csv(f"{prefix}.csv")
+    cells = pd.read_csv(f"{prefix}_cells.csv").to_numpy(dtype=np.int64)
+    column = {name: nodes[name].to_numpy(dtype=np.float64) for name in nodes.columns}
+    zero = np.zeros(len(nodes))
+    s11, s22, s12, s33 = (column[name] for name in STRESS_COMPONENTS)
+    point_data = {
+        "displacement": np.column_stack([column["u1"], column["u2"], zero]),
+        "stress": np.column_stack([s11, s12, zero, s12, s22, zero, zero, zero, s33]),
+        "sigma_eq": column["sigma_eq"],
+        **{name: column[name] for name in STRESS_COMPONENTS},
+    }
+    mesh = meshio.Mesh(np.column_stack([column["x1"], column["x2"], zero]),
+                       [("triangle6", cells)], point_data=point_data)
+    _written(f"{prefix}.vtu", lambda partial: meshio.write(partial, mesh, file_format="vtu"))
+
+
 def write_shell_fields(fields_csv, spec, vtu_path):
     """Complete a shell worker's fields file (xi, v, w, gamma, epsilon, T11, T13, M11, T33
     along the mid-line) with the mid-line's place x1, x2, and write it as a VTU polyline
-    with the displacement v t + w n in global components, gamma, epsilon and the forces."""
+    with the displacement v t + w n in global components, gamma, epsilon, the forces and
+    the fibre stresses: sigma11_top, sigma11_bottom = T11/h2 +- 6 M11/h2^2 at the top face
+    (the contact side, xi3 = +h2/2 along the face's outward normal: M11 > 0 stretches it)
+    and the bottom face (the bond), and sigma13_mean = T13/h2 (answers.fibre_stresses)."""
     data = pd.read_csv(fields_csv)
     s = spec.s_start + data["xi"].to_numpy() / spec.stretch
     place = spec.face.point(s, 0.5 * spec.thickness)
@@ -119,5 +136,7 @@ def write_shell_fields(fields_csv, spec, vtu_path):
     point_data = {"displacement": np.column_stack([displacement, np.zeros(len(data))])}
     for name in ("gamma", "epsilon", "T11", "T13", "M11", "T33"):
         point_data[name] = data[name].to_numpy()
+    top, bottom, shear = fibre_stresses(data, spec.thickness)
+    point_data.update(sigma11_top=top, sigma11_bottom=bottom, sigma13_mean=shear)
     mesh = meshio.Mesh(points, [("line", lines[keep])], point_data=point_data)
     _written(vtu_path, lambda partial: meshio.write(partial, mesh, file_format="vtu"))

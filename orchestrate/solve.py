@@ -35,6 +35,7 @@ from .folders import RunFolder, WorkFolder
 from .labels import LABELS
 from .model_choice import choose_models
 from .outputs import read_reactions, write_csv, write_history, write_json, write_shell_fields
+from .paraview import RUN_COLLECTION, write_collection
 from .problem_size import check_size
 from .robin import run_robin_loop
 from .scene import check_compatible, to_dict
@@ -171,6 +172,8 @@ def _write_results(problem, loop, out_dir):
         if subdomain.kind == "shell":
             write_shell_fields(os.path.join(out_dir, f"{name}_fields.csv"), subdomain.plan,
                                os.path.join(out_dir, f"{name}.vtu"))
+    write_collection(os.path.join(out_dir, RUN_COLLECTION),
+                     [f"{name}.vtu" for name in problem.subdomains])
 
     indenter = read_reactions(os.path.join(out_dir, "indenter_reactions.txt"))
     base = read_reactions(os.path.join(out_dir, "base_reactions.txt"))

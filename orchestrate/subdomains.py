@@ -13,7 +13,7 @@ from .errors import system_failure
 from .faults import checkpoint
 from .exchange import parse_reply, reply_count, request_arrays, write_sides
 from .mesh import body_mesh, coating_mesh, write_medit
-from .outputs import check_written
+from .outputs import check_written, write_body_fields
 from .body_plans import BodyPlan
 from .worker import CMD_OUTPUT, CMD_SOLVE, Worker
 
@@ -128,14 +128,17 @@ class Subdomains:
         return traces, seconds, descent
 
     def write_outputs(self):
-        """Ask every worker to write its fields (CSV, VTU) and reactions next to its
-        output prefix, and check that every file is whole."""
+        """Ask every worker to write its fields (CSV) and reactions next to its output
+        prefix, check that every file is whole, and write each body's VTU from them."""
         for worker in self.workers.values():
             worker.send(CMD_OUTPUT)
         checkpoint("output")
         for name, worker in self.workers.items():
             written, = worker.receive_arrays(1)
-            check_written(self.output_prefix[name], self.problem.subdomains[name].kind, written)
+            kind = self.problem.subdomains[name].kind
+            check_written(self.output_prefix[name], kind, written)
+            if kind == "body":
+                write_body_fields(self.output_prefix[name])
 
     def close(self):
         for worker in self.workers.values():
