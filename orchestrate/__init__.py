@@ -11,5 +11,6 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 from .api import Result, solve  # noqa: E402
 from .scene import Scene, Settings  # noqa: E402
 from .scene_file import load_scene, paper_scene  # noqa: E402
+from .units import Units  # noqa: E402
 
-__all__ = ["Result", "Scene", "Settings", "load_scene", "paper_scene", "solve"]
+__all__ = ["Result", "Scene", "Settings", "Units", "load_scene", "paper_scene", "solve"]

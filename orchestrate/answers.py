@@ -14,8 +14,8 @@ the values to design with) and within that distance ("at_patch_ends", marked
 mesh-dependent: they say where the stress concentrates, not how much). A half model's
 symmetry axis is no end.
 
-Stresses are in the scene's stress unit (E in the dimensionless form), positions in its
-length unit; compression is negative, tension positive.
+Computed in the solver's b and E, expressed in the scene's units with every output
+(orchestrate/units.py); compression is negative, tension positive.
 """
 
 import numpy as np
@@ -103,22 +103,22 @@ def shell_answers(scene, coating, fields):
                    fields["x1"], fields["x2"])
 
 
-def _where(extreme):
-    return f"{extreme['value']:.4g} at x1 = {extreme['x1']:.4g}"
+def describe(answers, units):
+    """The answers as lines for a person, with the units of the summary's "units"."""
+    stress, length = units["stress"], units["length"]
 
-
-def describe(answers):
-    """The answers as lines for a person (values in the scene's stress unit)."""
+    def where(extreme):
+        return f"{extreme['value']:.4g} {stress} at x1 = {extreme['x1']:.4g} {length}"
     lines = []
     peak = answers["contact"]["peak_pressure"]
     if peak:
-        lines.append(f"peak contact pressure {_where(peak)}")
+        lines.append(f"peak contact pressure {where(peak)}")
     for group in ("bonds", "coatings"):
         for name, values in answers[group].items():
-            found = [f"{quantity.replace('_', ' ')} {_where(extreme)}"
+            found = [f"{quantity.replace('_', ' ')} {where(extreme)}"
                      for quantity, extreme in values.items()
                      if quantity != "at_patch_ends" and extreme]
-            ends = [f"{quantity.replace('_', ' ')} {extreme['value']:.4g}"
+            ends = [f"{quantity.replace('_', ' ')} {extreme['value']:.4g} {stress}"
                     for quantity, extreme in values.get("at_patch_ends", {}).items()
                     if quantity != "mesh_dependent" and extreme]
             lines.append(f"{name}: " + ", ".join(found or ["no stress"])

@@ -281,11 +281,13 @@ def _solve(args):
                     f"{100 * patch['estimated_error']:.2g} %, tolerance "
                     f"{100 * settings.model_tolerance:g} %")
         _say(f"coating[{patch['patch']}]: model auto chose {patch['model']} ({estimate})")
-    for line in describe(summary["answers"]):
+    units = summary["units"]
+    for line in describe(summary["answers"], units):
         _say(line)
-    descent = (f", descent {summary['descent']:.4e}" if scene.load.force is not None else "")
+    descent = (f", descent {summary['descent']:.4e} {units['length']}"
+               if scene.load.force is not None else "")
     _say(f"converged in {summary['iterations']} iterations, {summary['wall_time_s']:.1f} s; "
-         f"contact force {summary['total_force']:.4e}{descent}, contact zones "
-         + ", ".join(f"[{a:.3f}, {b:.3f}]" for a, b in summary["contact_zones"])
-         + f"; results in {args.out}")
+         f"contact force {summary['total_force']:.4e} {units['force']}{descent}, contact "
+         "zones " + ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in summary["contact_zones"])
+         + f" {units['length']}; results in {args.out}")
     return EXIT_CONVERGED

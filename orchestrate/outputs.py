@@ -33,7 +33,16 @@ def _written(path, write):
 
 
 def write_json(path, data):
-    _written(path, lambda partial: partial.write_text(json.dumps(data, indent=2) + "\n"))
+    write_text(path, json.dumps(data, indent=2) + "\n")
+
+
+def write_text(path, text):
+    _written(path, lambda partial: Path(partial).write_text(text))
+
+
+def write_vtu(path, mesh):
+    """Write a meshio mesh as VTU (binary, the arrays' own precision)."""
+    _written(path, lambda partial: meshio.write(partial, mesh, file_format="vtu"))
 
 
 def write_csv(path, columns):
@@ -112,7 +121,7 @@ def write_body_fields(prefix):
     }
     mesh = meshio.Mesh(np.column_stack([column["x1"], column["x2"], zero]),
                        [("triangle6", cells)], point_data=point_data)
-    _written(f"{prefix}.vtu", lambda partial: meshio.write(partial, mesh, file_format="vtu"))
+    write_vtu(f"{prefix}.vtu", mesh)
 
 
 def write_shell_fields(fields_csv, spec, vtu_path):
@@ -139,4 +148,4 @@ def write_shell_fields(fields_csv, spec, vtu_path):
     top, bottom, shear = fibre_stresses(data, spec.thickness)
     point_data.update(sigma11_top=top, sigma11_bottom=bottom, sigma13_mean=shear)
     mesh = meshio.Mesh(points, [("line", lines[keep])], point_data=point_data)
-    _written(vtu_path, lambda partial: meshio.write(partial, mesh, file_format="vtu"))
+    write_vtu(vtu_path, mesh)

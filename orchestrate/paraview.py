@@ -12,11 +12,11 @@ to a temporary name and renamed, like every output (orchestrate/outputs.py).
 
 import os
 import xml.etree.ElementTree as ElementTree
-from pathlib import Path
 
-from .outputs import _written
+from .outputs import write_text
 
 RUN_COLLECTION = "run.pvd"
+SWEEP_COLLECTION = "sweep.pvd"
 
 
 def _collection(path, datasets):
@@ -29,7 +29,7 @@ def _collection(path, datasets):
                                {key: str(value) for key, value in attributes.items()})
     ElementTree.indent(root)
     text = '<?xml version="1.0"?>\n' + ElementTree.tostring(root, encoding="unicode") + "\n"
-    _written(path, lambda partial: Path(partial).write_text(text))
+    write_text(path, text)
 
 
 def write_collection(path, files):

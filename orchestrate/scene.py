@@ -23,6 +23,7 @@ import math
 from typing import Optional
 
 from .errors import ParameterError
+from .units import Units
 
 MODELS = ("shell", "stretch_shell", "elastic")
 SHELL_MODELS = ("shell", "stretch_shell")   # the coating on its mid-line
@@ -230,8 +231,11 @@ class Scene:
     coatings: tuple = ()
     symmetric: bool = True
     contact_zone: Optional[tuple] = None
+    units: Units = Units()         # the file's units (orchestrate/units.py); default b, E
 
     def __post_init__(self):
+        _require(isinstance(self.units, Units), "units",
+                 f"units = {self.units!r} must be orchestrate.units.Units")
         _require(isinstance(self.coatings, (tuple, list)), "coating",
                  f"coating = {self.coatings!r} must be a list of patches ([[coating]] tables)")
         object.__setattr__(self, "coatings", tuple(self.coatings))
@@ -439,7 +443,8 @@ def scene_from_dict(data):
     return Scene(indenter=Indenter(**indenter), base=Base(**data["base"]),
                  coatings=tuple(Coating(**c) for c in data["coatings"]),
                  load=Load(**data["load"]), symmetric=data["symmetric"],
-                 contact_zone=data.get("contact_zone"))
+                 contact_zone=data.get("contact_zone"),
+                 units=Units(**data.get("units", {})))     # older summaries: b and E
 
 
 def settings_fields():

@@ -8,6 +8,8 @@ A scene file has the tables of orchestrate/scene.py (README, "Scene files"):
     [base]       shape, width, height, radius, bore, E, nu
     [[coating]]  start, end, thickness, E, nu, model, shear_factor   (any number)
     [load]       displacement or force
+    [units]      length, stress, b (optional: lengths in mm and moduli in MPa, say;
+                 orchestrate/units.py)
     [settings]   any solver setting (optional; flags override it)
 
 An unknown key, a value of the wrong type or out of range is refused before any work,
@@ -27,12 +29,14 @@ import tomllib
 
 from .paths import PACKAGE_DIR
 from .scene import (Base, Coating, Indenter, Load, ParameterError, Scene, Settings)
+from .units import units_from_table
 
 SCENES_DIR = PACKAGE_DIR / "scenes"
 PAPER_SCENE_FILE = SCENES_DIR / "paper.toml"
 
 _TABLES = {"indenter": Indenter, "base": Base, "coating": Coating, "load": Load}
-_TOP_LEVEL = ("symmetric", "contact_zone", "indenter", "base", "coating", "load", "settings")
+_TOP_LEVEL = ("symmetric", "contact_zone", "units", "indenter", "base", "coating", "load",
+              "settings")
 
 # The paper's scene parameters (METHOD.md) as shorthands: name -> (meaning, dotted keys)
 SHORTHANDS = {
@@ -93,7 +97,8 @@ def scene_from_table(data, path=None):
                            for i, c in enumerate(coatings, start=1)),
             load=_build(Load, data["load"], "load.", path),
             symmetric=data.get("symmetric", True),
-            contact_zone=data.get("contact_zone"))
+            contact_zone=data.get("contact_zone"),
+            units=units_from_table(data.get("units", {}), path))
     except ParameterError as error:
         if path and not str(error).startswith(f"{path}:"):
             raise ParameterError(f"{path}: {error}", error.key) from None

@@ -1,20 +1,25 @@
 """One run: validate, mesh, start the workers, iterate, write the results.
 
-Results of a run in its output folder:
+Results of a run in its output folder, in the scene's units (b and E unless its file
+has a [units] table; summary.json's "units" names the unit of every column):
     contact.csv    every contact interface's points: interface, x1, x2, s (arc length
-                   along the base's face), sigma_n (normal stress / E, compression negative)
+                   along the base's face), sigma_n (normal stress, compression negative)
     interface.csv  every bond's points: interface, x1, x2, s, sigma_n, sigma_t (the
                    traction on the base, in the face's normal and tangential components)
     traces.csv     interface, x1, x2, s and each side's displacement trace: a_n, b_n (a
                    contact: along each side's outward normal), a_t, a_n, b_t, b_n (a bond:
                    the coating's and the base's, in the face's components)
     history.csv    one row per Robin iteration
-    summary.json   scene, settings, outcome, forces, peaks, contact zones (written last)
-    NAME.vtu, NAME.csv, NAME_reactions.txt   each body's fields (indenter, base, 2D coating
-                   patches coatingI): displacement and stress, x1, x2, u1, u2, sigma_eq at
-                   the P2 nodes, consistent reactions on its supports
-    coatingI_fields.csv, coatingI.vtu   a shell patch's xi, x1, x2, v, w, gamma, T11, T13,
-                   M11 along its mid-line
+    summary.json   scene, settings, outcome, answers, forces, peaks, contact zones, units
+                   (written last)
+    NAME.csv, NAME_cells.csv, NAME_reactions.txt, NAME.vtu   each body's fields (indenter,
+                   base, 2D coating patches coatingI): x1, x2, u1, u2, sigma_eq, s11, s22,
+                   s12, s33 at the P2 nodes (recovered stresses, freefem/recovery.idp), the
+                   P2 triangles as six node rows each, the consistent reactions on its
+                   supports (label, R1, R2), and all of it as quadratic VTU
+    coatingI_fields.csv, coatingI.vtu   a shell patch's xi, x1, x2, v, w, gamma, epsilon,
+                   T11, T13, M11, T33 along its mid-line; the VTU adds its fibre stresses
+    run.pvd        opens every VTU of the run together in ParaView
 Numbers that did not converge are never written as results: a run that diverges or
 stagnates writes only history.csv and a summary.json that says why.
 """
@@ -41,6 +46,7 @@ from .robin import run_robin_loop
 from .scene import check_compatible, to_dict
 from .state import StateLayout
 from .subdomains import start_subdomains, write_inputs
+from .units import dimensionless, express_run, scaled_summary, summary_units
 
 
 def solve(scene, settings, out_dir, progress=None, overwrite=False):
@@ -52,7 +58,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
     writing the report) if the loop does not converge, SystemFailure if a worker or a
     file fails. The folder appears only once complete (orchestrate/folders.py)."""
     freefem.executable()             # a missing FreeFEM is reported before any work
-    scene, problem, model_choice = prepare(scene, settings)
+    scene, problem, model_choice, scales = prepare(scene, settings)
     start = time.perf_counter()
     with RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir:
         scratch = str(folder.scratch)
@@ -89,6 +95,9 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
         write_history(os.path.join(scratch, "history.csv"), loop.history)
         if loop.converged:
             summary.update(_write_results(problem, loop, scratch))
+        express_run(scratch, scales)         # every file in the scene's units
+        summary = scaled_summary(summary, scales)
+        summary["units"] = summary_units(scratch, scene.units, scales)
         summary["wall_time_s"] = time.perf_counter() - start
         write_json(os.path.join(scratch, "summary.json"), summary)
         checkpoint("committing")
@@ -99,14 +108,17 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
 
 
 def prepare(scene, settings):
-    """Everything checked and decided before any work: (the scene as it will be solved,
-    with every "auto" patch's model chosen; its problem; the choice's report or None).
-    ParameterError for settings the scene cannot take or a problem too large."""
+    """Everything checked and decided before any work: (the scene as given, with every
+    "auto" patch's model chosen; the problem of its dimensionless form; the choice's
+    report or None; the Scales back to the scene's units). ParameterError for settings
+    the scene cannot take or a problem too large."""
     check_compatible(scene, settings)
-    scene, model_choice = choose_models(scene, settings)
-    problem = discretize(scene, settings)
+    solved, scales = dimensionless(scene)
+    solved, model_choice = choose_models(solved, settings)
+    problem = discretize(solved, settings)
     check_size(problem)
-    return scene, problem, model_choice
+    return (scene.with_models([c.model for c in solved.coatings]), problem, model_choice,
+            scales)
 
 
 def zone_end_reached(problem, psi):

@@ -56,6 +56,7 @@ from .errors import ParameterError
 from .folders import (RunFolder, hold_lock, release_lock, remove_dead_run_leftovers,
                       remove_dead_work_folders)
 from .outputs import write_json
+from .paraview import SWEEP_COLLECTION, write_sweep_collection
 from .paths import RESULTS_DIR
 from .run_names import legacy_name, run_names, values_hash
 from .scene import Settings, scene_from_dict, to_dict
@@ -295,11 +296,15 @@ def _flatten(data, prefix=""):
 
 
 def write_table(sweep_dir, runs):
+    """runs.csv, and sweep.pvd: the finished runs' fields in ParaView, one time step per
+    run in the file's order (its time slider steps through them)."""
     table = gather(sweep_dir, runs)
     path = Path(sweep_dir) / "runs.csv"
     partial = path.with_name(".runs.csv.partial")
     table.to_csv(partial, index=False)
     os.replace(partial, path)
+    write_sweep_collection(Path(sweep_dir) / SWEEP_COLLECTION,
+                           [Path(sweep_dir) / "runs" / name for name, _ in runs])
     return table
 
 

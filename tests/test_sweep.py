@@ -13,7 +13,9 @@ import signal
 import subprocess
 import sys
 import time
+from xml.etree import ElementTree
 
+import meshio
 import numpy as np
 import pandas as pd
 import pytest
@@ -136,7 +138,7 @@ def test_an_interrupted_sweep_resumes_with_the_missing_runs_only(sweep_file, uni
                              timeout=300)
     assert resumed.returncode == 1, resumed.stderr     # a run did not converge (by design)
     assert {name: os.stat(out / "runs" / name).st_mtime_ns for name in kept} == stamps
-    assert sorted(os.listdir(out)) == ["runs", "runs.csv"]            # nothing else, no lock
+    assert sorted(os.listdir(out)) == ["runs", "runs.csv", "sweep.pvd"]   # no lock
     assert not [name for name in os.listdir(out / "runs") if name.startswith(".")]
     _same_table(pd.read_csv(out / "runs.csv"), pd.read_csv(uninterrupted[1] / "runs.csv"))
 
@@ -235,7 +237,8 @@ def test_a_second_sweep_of_one_folder_is_refused_and_foreign_files_stay(tmp_path
     assert second.returncode == 2 and "another sweep is running in it" in second.stderr
     _, stderr = first.communicate(timeout=300)
     assert first.returncode == 0, stderr
-    assert sorted(os.listdir(out)) == ["notes.txt", "runs", "runs.csv", "scratch", "tmp"]
+    assert sorted(os.listdir(out)) == ["notes.txt", "runs", "runs.csv", "scratch", "sweep.pvd",
+                                       "tmp"]
     for name in ("tmp", "scratch"):
         assert (out / name / "keep.txt").read_text() == "mine"
 
@@ -327,3 +330,18 @@ def test_every_row_has_the_runs_answers(uninterrupted):
     np.testing.assert_allclose(done.peak_pressure, -done.peak_contact_stress, rtol=1e-12)
     assert done["bond-coating1.compression"].lt(0).all()
     assert done["bond-coating1.shear"].gt(0).all()
+
+
+def test_the_sweep_pvd_opens_every_converged_run_one_time_step_each(uninterrupted):
+    """sweep.pvd: run k of runs.csv's converged rows (in the file's order) is time step k,
+    its parts that run's VTU files, all of which exist and read back."""
+    table, out = uninterrupted
+    datasets = list(ElementTree.parse(out / "sweep.pvd").getroot().iter("DataSet"))
+    steps = {}
+    for dataset in datasets:
+        path = out / dataset.get("file")
+        assert path.is_file() and path.suffix == ".vtu"
+        steps.setdefault(int(dataset.get("timestep")), set()).add(path.parent.name)
+    done = table[table.converged.astype(bool)]
+    assert [steps[k] for k in sorted(steps)] == [{name} for name in done.id]
+    assert len(meshio.read(out / datasets[0].get("file")).points) > 0

@@ -1,0 +1,196 @@
+"""A scene in mm and MPa and its dimensionless twin give the same stresses after scaling.
+
+The twin is the same scene in b and E: lengths / b, moduli / E (the stiffer body's
+modulus), the force / (E b). Every file and the summary of the mm run must be the twin's
+scaled by the unit of its kind; the factors are written out here, apart from the code's
+registry (orchestrate/units.py), so that a wrong kind there fails.
+"""
+
+import dataclasses
+import json
+import os
+
+import meshio
+import numpy as np
+import pandas as pd
+import pytest
+
+import orchestrate
+from orchestrate.errors import ParameterError
+from orchestrate.scene import Base, Coating, Indenter, Load
+from orchestrate.scene_file import load_scene
+from orchestrate.units import SCENE_KINDS
+
+B, E = 2.5, 70000.0     # b in mm, E in MPa
+LENGTH, STRESS, FORCE, MOMENT = B, E, E * B, E * B * B
+
+# A shell patch under the indenter and a 2D patch beside it: every kind of output
+TWIN = """
+symmetric = true
+{units}
+[indenter]
+radius = {radius}
+profile = "circle"
+width = {width}
+height = {height}
+E = {E1}
+nu = 0.3
+[base]
+shape = "block"
+width = {width}
+height = {height}
+E = {E3}
+nu = 0.25
+[[coating]]
+start = 0.0
+end = {end1}
+thickness = {h}
+E = {E2}
+nu = 0.3
+model = "shell"
+[[coating]]
+start = {start2}
+end = {end2}
+thickness = {h}
+E = {E2}
+nu = 0.3
+model = "elastic"
+[load]
+force = {force}
+"""
+DIMENSIONLESS = dict(radius=20.0, width=4.0, height=8.0, end1=0.75, start2=0.875, end2=2.0,
+                     h=0.125, E1=1.0, E3=0.5, E2=5.0, force=0.02)
+IN_MM = {key: value * (STRESS if key.startswith("E") else FORCE if key == "force" else LENGTH)
+         for key, value in DIMENSIONLESS.items()}
+MM_UNITS = f'[units]\nlength = "mm"\nstress = "MPa"\nb = {B!r}'
+
+# The factor of every column and VTU field: a name missing here fails the test
+FACTORS = {
+    **dict.fromkeys(["x1", "x2", "s", "xi", "u1", "u2", "v", "w", "a_t", "a_n", "b_t",
+                     "b_n", "displacement", "descent"], LENGTH),
+    **dict.fromkeys(["sigma_n", "sigma_t", "sigma_eq", "s11", "s22", "s12", "s33", "stress",
+                     "sigma11_top", "sigma11_bottom", "sigma13_mean"], STRESS),
+    **dict.fromkeys(["T11", "T13", "T33", "contact_force"], FORCE),
+    "M11": MOMENT,
+    **dict.fromkeys(["gamma", "epsilon", "n0", "n1", "n2", "n3", "n4", "n5"], 1.0),
+}
+HISTORY_SAME = ("iteration", "relative_change", "active_points")   # the iterations agree
+
+
+@pytest.fixture(scope="module")
+def twins(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("units")
+    runs = {}
+    for name, units, values in (("mm", MM_UNITS, IN_MM), ("twin", "", DIMENSIONLESS)):
+        path = folder / f"{name}.toml"
+        path.write_text(TWIN.format(units=units, **values))
+        runs[name] = orchestrate.solve(path).save(folder / name)
+    return runs["mm"], runs["twin"]
+
+
+def _close(scaled, twin, where):
+    scaled, twin = np.asarray(scaled, dtype=float), np.asarray(twin, dtype=float)
+    assert np.array_equal(np.isnan(scaled), np.isnan(twin)), where   # traces: a contact
+    size = max(np.nanmax(np.abs(twin)), 1e-300)                       # has no a_t
+    assert np.nanmax(np.abs(scaled - twin)) <= 1e-10 * size, where
+
+
+def test_every_file_is_the_twins_scaled_to_1e_10(twins):
+    mm, twin = twins
+    names = sorted(os.listdir(twin))
+    assert names == sorted(os.listdir(mm))
+    assert {"coating1_fields.csv", "coating2.csv", "coating2_cells.csv", "coating1.vtu",
+            "coating2.vtu", "base_reactions.txt"} <= set(names)
+    for name in names:
+        if name.endswith(".csv") and name != "history.csv":
+            a, b = pd.read_csv(mm / name), pd.read_csv(twin / name)
+            assert list(a.columns) == list(b.columns)
+            for column in b.columns.drop("interface", errors="ignore"):
+                _close(a[column] / FACTORS[column], b[column], f"{name} {column}")
+        elif name.endswith(".vtu"):
+            a, b = meshio.read(mm / name), meshio.read(twin / name)
+            _close(a.points / LENGTH, b.points, f"{name} points")
+            assert set(a.point_data) == set(b.point_data)
+            for field in b.point_data:
+                _close(a.point_data[field] / FACTORS[field], b.point_data[field],
+                       f"{name} {field}")
+        elif name.endswith("_reactions.txt"):
+            a, b = (np.loadtxt(folder / name) for folder in (mm, twin))
+            _close(a[:, 1:] / FORCE, b[:, 1:], name)
+    a, b = pd.read_csv(mm / "history.csv"), pd.read_csv(twin / "history.csv")
+    for column in HISTORY_SAME:
+        _close(a[column], b[column], f"history.csv {column}")
+    _close(a["descent"] / LENGTH, b["descent"], "history.csv descent")
+
+
+def _leaves(tree, path=()):
+    if isinstance(tree, dict):
+        for key, value in tree.items():
+            yield from _leaves(value, path + (key,))
+    elif isinstance(tree, list):
+        for i, value in enumerate(tree):
+            yield from _leaves(value, path + (i,))
+    else:
+        yield path, tree
+
+
+def test_the_summarys_answers_forces_and_positions_are_the_twins_scaled(twins):
+    mm, twin = (json.loads((run / "summary.json").read_text()) for run in twins)
+    factor = {"value": STRESS, "x1": LENGTH, "x2": LENGTH}
+    compared = 0
+    for path, value in _leaves(twin["answers"]):
+        other = dict(_leaves(mm["answers"]))[path]
+        if isinstance(value, float):
+            _close(other / factor[path[-1]], value, f"answers {path}")
+            compared += 1
+    assert compared >= 20
+    for key, scale in (("total_force", FORCE), ("contact_force", FORCE),
+                       ("stamp_reaction", FORCE), ("base_reaction", FORCE),
+                       ("peak_contact_stress", STRESS), ("peak_interface_stress", STRESS),
+                       ("contact_half_width", LENGTH), ("descent", LENGTH)):
+        _close(mm[key] / scale, twin[key], key)
+    _close(np.array(mm["contact_zones"]) / LENGTH, twin["contact_zones"], "contact_zones")
+    assert mm["iterations"] == twin["iterations"]
+    # the load as given, and the force it asked for carried (a sanity check of the twin)
+    assert mm["scene"]["load"]["force"] == pytest.approx(IN_MM["force"], rel=1e-15)
+    assert mm["total_force"] == pytest.approx(IN_MM["force"], rel=1e-6)
+
+
+def test_every_output_says_its_units(twins):
+    mm, twin = (json.loads((run / "summary.json").read_text()) for run in twins)
+    assert (mm["units"]["length"], mm["units"]["stress"]) == ("mm", "MPa")
+    assert mm["units"]["force"].startswith("MPa mm")
+    assert (mm["units"]["b"], mm["units"]["E"]) == ("2.5 mm", "70000.0 MPa")
+    assert (twin["units"]["length"], twin["units"]["stress"]) == ("b", "E")
+    columns = mm["units"]["columns"]
+    written = {name for name in os.listdir(twins[0]) if name.endswith(".csv")}
+    assert set(columns) == written
+    assert columns["contact.csv"] == {"x1": "mm", "x2": "mm", "s": "mm", "sigma_n": "MPa"}
+    assert columns["coating1_fields.csv"]["M11"].startswith("MPa mm^2")
+    assert columns["history.csv"]["seconds"] == "s"
+
+
+def test_every_number_of_a_scene_has_a_kind():
+    """A new scene field cannot escape the conversion: every number of the scene's
+    tables is a length, a stress, a force or one of the dimensionless ones named here."""
+    dimensionless = {"nu", "shear_factor"}
+    for table, cls in (("indenter", Indenter), ("base", Base), ("coating", Coating),
+                       ("load", Load)):
+        for field in dataclasses.fields(cls):
+            if "float" in str(field.type) or field.type is float:
+                assert field.name in SCENE_KINDS[table] or field.name in dimensionless, \
+                    f"{table}.{field.name}"
+
+
+@pytest.mark.parametrize("units, message", [
+    ('[units]\nlength = "mm"\nstress = "MPa"', "units.b is missing"),
+    ('[units]\nlength = "mm"\nb = -1.0', "units.b = -1.0 must be a positive number"),
+    ('[units]\nlength = ""\nb = 1.0', "units.length = '' must be the name of a unit"),
+    ('[units]\nlenght = "mm"', "unknown key units.lenght"),
+])
+def test_bad_units_are_refused_naming_the_file_and_key(tmp_path, units, message):
+    path = tmp_path / "scene.toml"
+    path.write_text(TWIN.format(units=units, **IN_MM))
+    with pytest.raises(ParameterError, match=message) as error:
+        load_scene(path)
+    assert str(error.value).startswith(str(path))
