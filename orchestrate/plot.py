@@ -47,22 +47,23 @@ def _read_stresses(run_dir, name):
 
 def plot_run(run_dir, path=None):
     """Write ``run_dir/stresses.png``: the contact stress of every contact interface
-    and the bond stresses (normal, shear) of every patch against x1/b."""
+    and the bond stresses (normal, shear) of every patch against x1, in the run's units."""
     summary = finished_summary(run_dir)
     contact = _read_stresses(run_dir, "contact.csv")
     interface = _read_stresses(run_dir, "interface.csv")
+    units = summary.get("units", {"length": "b", "stress": "E"})    # older runs: b and E
     figure, axes = plt.subplots(figsize=(6.4, 4.0))
     for k, (name, part) in enumerate(contact.groupby("interface", sort=False)):
         axes.plot(part.x1, part.sigma_n, color="C0",
-                  label=r"contact $\sigma_n/E$" if k == 0 else None)
+                  label=r"contact $\sigma_n$" if k == 0 else None)
     for k, (name, part) in enumerate(interface.groupby("interface", sort=False)):
         axes.plot(part.x1, part.sigma_n, "--", color="C1",
-                  label=r"bond $\sigma_n/E$" if k == 0 else None)
+                  label=r"bond $\sigma_n$" if k == 0 else None)
         axes.plot(part.x1, part.sigma_t, ":", color="C2",
-                  label=r"bond $\sigma_t/E$" if k == 0 else None)
+                  label=r"bond $\sigma_t$" if k == 0 else None)
     axes.axhline(0.0, color="0.7", linewidth=0.8)
-    axes.set_xlabel(r"$x_1/b$")
-    axes.set_ylabel(r"stress $/E$")
+    axes.set_xlabel(f"$x_1$ ({units['length']})")
+    axes.set_ylabel(f"stress ({units['stress']})")
     models = sorted({c["model"] for c in summary["scene"]["coatings"]})
     axes.set_title(f"{len(summary['scene']['coatings'])} coating patch(es), "
                    f"{'/'.join(models) or 'uncoated'}: {summary['iterations']} iterations")

@@ -194,3 +194,17 @@ def test_bad_units_are_refused_naming_the_file_and_key(tmp_path, units, message)
     with pytest.raises(ParameterError, match=message) as error:
         load_scene(path)
     assert str(error.value).startswith(str(path))
+
+
+def test_the_mm_example_is_the_solver_scene_in_b_and_E():
+    """orchestrate/scenes/cylinder_mm.toml (steel, MPa, mm): its dimensionless form has
+    the stiffer body's modulus 1 and its lengths divided by b = 1 mm; the force in N/mm
+    becomes force / (E b)."""
+    from orchestrate.scene_file import SCENES_DIR
+    from orchestrate.units import dimensionless
+    scene, _ = load_scene(SCENES_DIR / "cylinder_mm.toml")
+    solved, scales = dimensionless(scene)
+    assert (scales.length, scales.stress) == (1.0, 210000.0)
+    assert solved.modulus == 1.0 and solved.coatings[0].E == 2.0
+    assert solved.indenter.radius == 50.0 and solved.load.force == 1000.0 / 210000.0
+    assert solved.units.dimensionless and scene.units.length == "mm"
