@@ -44,3 +44,17 @@ def full_model(scene):
         extra = tuple(replace(c, start=-c.end, end=-c.start) for c in off_axis)
         mirrored = apply_overrides(replace(mirrored, coatings=mirrored.coatings + extra), {})
     return mirrored
+
+
+@pytest.fixture(scope="session")
+def coating_2d_run(tmp_path_factory):
+    """(scene, run folder): the paper's scene with the 2D coating h2 = b/8, E2 = 5E (a
+    fig. 5 scene), solved once for the modules that read a 2D coating's fields."""
+    from orchestrate.scene import Settings
+    from orchestrate.scene_file import paper_scene
+    from orchestrate.solve import solve
+
+    folder = tmp_path_factory.mktemp("coating_2d") / "run"
+    scene = paper_scene(h2=0.125, E2=5.0, model="elastic")
+    solve(scene, Settings(), str(folder))
+    return scene, folder

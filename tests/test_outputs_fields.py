@@ -31,7 +31,6 @@ from orchestrate.outputs import STRESS_COMPONENTS, write_shell_fields
 from orchestrate.paraview import RUN_COLLECTION, write_collection, write_sweep_collection
 from orchestrate.scene import Settings
 from orchestrate.scene_file import paper_scene
-from orchestrate.solve import solve
 
 BODIES = ("indenter", "base", "coating1")
 FIELDS = ("sigma_eq",) + STRESS_COMPONENTS
@@ -39,10 +38,8 @@ COMPONENT_TOLERANCE = 5e-3     # of the field's range; measured at most 3.3e-3 (
 
 
 @pytest.fixture(scope="module")
-def run(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("fields") / "run"
-    solve(paper_scene(h2=0.125, E2=5.0, model="elastic"), Settings(), str(folder))
-    return folder
+def run(coating_2d_run):
+    return coating_2d_run[1]
 
 
 def _nodes(run, body):
