@@ -14,34 +14,25 @@ APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxiner
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: setup run test clean figures fig3 fig4 fig5 bench stability discrete adequacy
+# A recipe that fails leaves no target behind that would look up to date (a sweep's
+# runs.csv after an interrupted or failed run, say).
+.DELETE_ON_ERROR:
 
-# ---- The paper's figures: one run folder per scene, shared between figures ----------
-# results/runs/MODEL-h2_H-E2_E/summary.json is a run of the coating model MODEL with
-# h2 = H b and E2 = E E; summary.json is written last, so it marks a finished run.
-run = results/runs/$(1)-h2_$(2)-E2_$(3)/summary.json
-runs = $(foreach m,$(1),$(foreach h,$(2),$(foreach e,$(3),$(call run,$(m),$(h),$(e)))))
-FIG3_RUNS := $(call runs,shell elastic,1 0.125,5 1)
-FIG4_RUNS := $(call runs,shell elastic,1 0.5 0.25 0.125 0.0625,5 1)
-FIG5_RUNS := $(call runs,elastic,1 0.5 0.25 0.125,0.2 1 5)
+# ---- The paper's figures: every scene listed once, in a sweep file ---------------------
+# The sweep runs each scene once into results/figures/runs/ (runs.csv is written last; a
+# rerun skips finished runs); each figure takes the runs it needs.
+FIGURE_SWEEP := orchestrate/sweeps/figures.toml
+FIGURE_RUNS := results/figures/runs.csv
 
 figures: fig3 fig4 fig5
 fig3: results/fig3.png
 fig4: results/fig4.png
 fig5: results/fig5.png
 
-results/fig3.png: $(FIG3_RUNS) | setup
-	$(PYTHON) -m orchestrate.figures fig3 $(FIG3_RUNS)
-results/fig4.png: $(FIG4_RUNS) | setup
-	$(PYTHON) -m orchestrate.figures fig4 $(FIG4_RUNS)
-results/fig5.png: $(FIG5_RUNS) | setup
-	$(PYTHON) -m orchestrate.figures fig5 $(FIG5_RUNS)
-
-scene_word = $(word $(2),$(subst -, ,$(patsubst results/runs/%/summary.json,%,$(1))))
-results/runs/%/summary.json: | setup
-	$(PYTHON) -m orchestrate solve --quiet --overwrite --out $(@D) \
-	  --model $(call scene_word,$@,1) \
-	  --h2 $(patsubst h2_%,%,$(call scene_word,$@,2)) \
-	  --E2 $(patsubst E2_%,%,$(call scene_word,$@,3))
+$(FIGURE_RUNS): $(FIGURE_SWEEP) | setup
+	$(PYTHON) -m orchestrate sweep $(FIGURE_SWEEP)
+results/fig%.png: $(FIGURE_RUNS) | setup
+	$(PYTHON) -m orchestrate.figures fig$* results/figures
 
 # ---- A discrete coating (orchestrate/scenes/discrete.toml), both coating models ------
 DISCRETE_RUNS := $(foreach m,shell elastic,results/discrete/$(m)/summary.json)

@@ -21,7 +21,7 @@ def _atomic(path):
     return path, path.with_name(f".{path.name}.partial")
 
 
-def _written(path, write):
+def written(path, write):
     """Run write(partial path), then rename; a failed write leaves nothing and says why."""
     path, partial = _atomic(path)
     try:
@@ -37,12 +37,12 @@ def write_json(path, data):
 
 
 def write_text(path, text):
-    _written(path, lambda partial: Path(partial).write_text(text))
+    written(path, lambda partial: Path(partial).write_text(text))
 
 
 def write_vtu(path, mesh):
     """Write a meshio mesh as VTU (binary, the arrays' own precision)."""
-    _written(path, lambda partial: meshio.write(partial, mesh, file_format="vtu"))
+    written(path, lambda partial: meshio.write(partial, mesh, file_format="vtu"))
 
 
 def write_csv(path, columns):
@@ -55,17 +55,17 @@ def write_csv(path, columns):
             writer = csv.writer(out)
             writer.writerow(names)
             writer.writerows(rows)
-    _written(path, write)
+    written(path, write)
 
 
-def check_written(prefix, kind, written):
+def check_written(prefix, kind, counts):
     """Raise SystemFailure unless a worker's files next to ``prefix`` are whole: as many
     rows and lines as it reported writing (body: nodal CSV rows, cell rows, reaction
     lines; shell: field rows). FreeFEM does not report a failed write; a full disk or a
     file size limit leaves its files short."""
-    expected = ({f"{prefix}.csv": written[0] + 1, f"{prefix}_cells.csv": written[1] + 1,
-                 f"{prefix}_reactions.txt": written[2]}
-                if kind == "body" else {f"{prefix}_fields.csv": written[0] + 1})
+    expected = ({f"{prefix}.csv": counts[0] + 1, f"{prefix}_cells.csv": counts[1] + 1,
+                 f"{prefix}_reactions.txt": counts[2]}
+                if kind == "body" else {f"{prefix}_fields.csv": counts[0] + 1})
     for path, lines in expected.items():
         found = _line_count(path)
         if found != lines:

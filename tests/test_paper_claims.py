@@ -36,14 +36,16 @@ def runs(tmp_path_factory):
         return Runs(list(pool.map(_solve, jobs)))
 
 
-def test_the_figure_scenes_are_the_makefiles():
-    """The Makefile's run lists and FIGURE_SCENES name the same 24 runs."""
-    make = subprocess.run(["make", "-n", "-p", "fig3"], cwd=PROJECT_DIR, capture_output=True,
+def test_make_draws_the_figures_from_the_one_list_of_scenes():
+    """`make fig3` runs the figure sweep (the only list of the figure scenes) and draws
+    from its folder; that list has the 24 scenes of figs. 3-5."""
+    make = subprocess.run(["make", "-n", "-B", "fig3"], cwd=PROJECT_DIR, capture_output=True,
                           text=True).stdout
-    lists = [line.split(":=", 1)[1].split() for line in make.splitlines()
-             if line.startswith(("FIG3_RUNS :=", "FIG4_RUNS :=", "FIG5_RUNS :="))]
-    names = {path.split("/")[2] for paths in lists for path in paths}
-    assert names == {f"{m}-h2_{h2:g}-E2_{E2:g}" for m, h2, E2 in FIGURE_SCENES}
+    assert "-m orchestrate sweep orchestrate/sweeps/figures.toml" in make
+    assert "-m orchestrate.figures fig3 results/figures" in make
+    assert len(FIGURE_SCENES) == 24
+    assert {(m, E2) for m, _, E2 in FIGURE_SCENES} == {
+        ("shell", 5.0), ("shell", 1.0), ("elastic", 5.0), ("elastic", 1.0), ("elastic", 0.2)}
 
 
 def contact(runs, model, h2, E2):
