@@ -71,9 +71,11 @@ test: setup
 	$(PYTHON) -m pytest -q tests
 
 # Speed against accuracy on the figure scenes (about 15 minutes; the fine references
-# are computed once into results/reference/): results/bench.csv, speed_accuracy.png.
+# are computed once into results/reference/): results/bench.csv, speed_accuracy.png;
+# the penalty's error against the mesh's at levels 1-3: results/penalty.csv.
 bench: setup
 	$(PYTHON) -m orchestrate.bench
+	$(PYTHON) -m orchestrate.penalty
 
 # Where each method fails: a sweep of 102 runs (resumable), then its maps and charts
 # (results/stability/). Errors use the fine references of `make bench` where they exist.
