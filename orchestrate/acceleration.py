@@ -74,21 +74,28 @@ class Anderson:
             return x + self.first_relaxation * (g - x)
         d_residuals = np.diff(np.array(self._residuals), axis=0).T   # newest column last
         d_images = np.diff(np.array(self._images), axis=0).T
-        keep = self._filter(d_residuals)
-        coefficients, *_ = np.linalg.lstsq(d_residuals[:, keep], r, rcond=None)
-        return g - d_images[:, keep] @ coefficients
+        order, q, upper = self._filtered_qr(d_residuals)
+        if not order:
+            return g
+        # the least-squares coefficients from the filter's own QR (no second factorisation)
+        coefficients = np.linalg.solve(upper, q.T @ r)
+        return g - d_images[:, order] @ coefficients
 
     def _filter(self, columns):
         """Indices of the columns kept, dropping the oldest dependent ones first."""
+        return sorted(self._filtered_qr(columns)[0])
+
+    def _filtered_qr(self, columns):
+        """(the kept columns' indices, newest first; Q; R of their QR in that order)."""
         # more columns than unknowns cannot be independent: keep the newest ones
-        keep = list(range(max(0, columns.shape[1] - columns.shape[0]), columns.shape[1]))
-        while keep:
+        newest, oldest = columns.shape[1] - 1, max(0, columns.shape[1] - columns.shape[0])
+        order = list(range(newest, oldest - 1, -1))
+        while order:
             # QR with the newest column first, so older near-duplicates are the ones dropped
-            order = keep[::-1]
-            _, r = np.linalg.qr(columns[:, order])
+            q, upper = np.linalg.qr(columns[:, order])
             norms = np.linalg.norm(columns[:, order], axis=0)
-            weak = np.flatnonzero(np.abs(np.diag(r)) < self.filter_tolerance * norms)
+            weak = np.flatnonzero(np.abs(np.diag(upper)) <= self.filter_tolerance * norms)
             if len(weak) == 0:
-                return keep
-            keep.remove(order[weak[0]])
-        return keep
+                return order, q, upper
+            del order[weak[0]]
+        return order, None, None

@@ -6,6 +6,7 @@
     result.answers["contact"]["peak_pressure"]
     result.fields["coating1"]       # a patch's nodes (2D) or mid-line forces (shell)
     result.save("run1")             # the files `python -m orchestrate solve --out run1` writes
+    orchestrate.solve(other_scene, start_from=result)   # from a nearby answer: faster
 
 The run itself is the command line's (orchestrate/solve.py): same checks, same files;
 here it writes into a private temporary folder, which is read back and removed.
@@ -88,14 +89,18 @@ def _read(folder):
     return tables, fields, files
 
 
-def solve(scene, settings=None, progress=None):
+def solve(scene, settings=None, progress=None, start_from=None):
     """Solve ``scene`` (a Scene, or the path of a scene file) with ``settings`` (Settings,
     a dict of setting values, or None: the defaults or the file's); return its Result.
-    Raises as orchestrate/solve.py's solve does: ParameterError before any work,
-    RunFailed (with the summary) if the loop does not converge, SystemFailure."""
+    ``start_from``: a finished run (a Result or a run folder) of a nearby scene, whose
+    interface state starts the loop (orchestrate/warm_start.py): fewer iterations, the
+    same answer. Raises as orchestrate/solve.py's solve does: ParameterError before any
+    work, RunFailed (with the summary) if the loop does not converge, SystemFailure."""
     scene, settings = _scene_and_settings(scene, settings)
     with tempfile.TemporaryDirectory(prefix="orchestrate-api-") as scratch:
+        if isinstance(start_from, Result):       # its files, as a folder to read
+            start_from = start_from.save(Path(scratch) / "start")
         out = Path(scratch) / "run"
-        summary = run.solve(scene, settings, out, progress=progress)
+        summary = run.solve(scene, settings, out, progress=progress, start_from=start_from)
         tables, fields, files = _read(out)
     return Result(summary=summary, fields=fields, files=files, **tables)

@@ -47,10 +47,13 @@ from .scene import check_compatible, to_dict
 from .state import StateLayout
 from .subdomains import start_subdomains, write_inputs
 from .units import dimensionless, express_run, scaled_summary, summary_units
+from .warm_start import state_from_run
 
 
-def solve(scene, settings, out_dir, progress=None, overwrite=False):
+def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None):
     """Solve the scene; write results into ``out_dir``; return the summary dict.
+    ``start_from``: a finished run's folder whose interface state is the first iterate
+    (orchestrate/warm_start.py; ignored where it shares no interface).
 
     Before any work: ParameterError for a scene the settings cannot solve, a problem
     too large for the machine, or an output folder another run holds or is writing
@@ -66,7 +69,9 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
         with start_subdomains(problem, settings, files, workdir, scratch) as subdomains:
             setup_seconds = time.perf_counter() - start
             checkpoint("setup")
-            loop = run_robin_loop(subdomains.solve, problem, settings, progress)
+            first_iterate = (state_from_run(start_from, StateLayout(problem.interfaces))
+                             if start_from is not None else None)
+            loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate)
             if loop.converged:
                 reached = zone_end_reached(problem, loop.psi)
                 if reached is not None:
@@ -90,6 +95,8 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False):
             "setup_time_s": setup_seconds,
             "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
             "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
+            "started_from": (str(start_from) if first_iterate is not None
+                             and settings.method != "paper" else None),
             "dofs": dofs,
         }
         write_history(os.path.join(scratch, "history.csv"), loop.history)

@@ -6,6 +6,8 @@ key in dotted form ("indenter.radius", "coating[2].E", "load.force"), and ``scen
 scene file (relative to the sweep file; default: the paper's scene):
 
     name = "example"                 # results/<name>/ (default: the file's stem)
+    warm_start = true                # each run starts from its nearest converged
+                                     # neighbour (orchestrate/warm_start.py; default false)
     [fixed]                          # values shared by every run
     eps_u = 1e-6
     [grid]                           # the product of these lists
@@ -61,6 +63,7 @@ from .paths import RESULTS_DIR
 from .run_names import legacy_name, run_names, values_hash
 from .scene import Settings, scene_from_dict, to_dict
 from .scene_file import is_scene_key, read_toml, scene_and_settings, shorthand_values
+from .warm_start import nearest
 
 SETTINGS_FIELDS = {f.name for f in fields(Settings)}
 NOT_CONVERGED = ("diverged", "stagnated", "max_iterations", "contact_zone")
@@ -76,10 +79,13 @@ def load_sweep(path):
     A malformed file is refused naming what is wrong."""
     path = Path(path)
     data = read_toml(path, "sweep file")
-    unknown_sections = set(data) - {"name", "fixed", "grid", "grids", "runs"}
+    unknown_sections = set(data) - {"name", "warm_start", "fixed", "grid", "grids", "runs"}
     if unknown_sections:
         raise ParameterError(f"{path}: unknown sweep section(s) {sorted(unknown_sections)} "
-                             "(allowed: name, fixed, grid, grids, runs)")
+                             "(allowed: name, warm_start, fixed, grid, grids, runs)")
+    if not isinstance(data.get("warm_start", False), bool):
+        raise ParameterError(f"{path}: warm_start = {data['warm_start']!r} must be true or "
+                             "false")
     name = data.get("name", path.stem)
     if not isinstance(name, str) or not NAME.fullmatch(name):
         raise ParameterError(f"{path}: name = {name!r} must be a plain folder name (letters, "
@@ -112,6 +118,12 @@ def load_sweep(path):
     if not points:
         raise ParameterError(f"{path} defines no run: give a [grid], [[grids]] or [[runs]]")
     return name, points
+
+
+def warm_start_of(path):
+    """Whether a sweep file asks its runs to start from their nearest finished neighbour
+    (``warm_start = true``; load_sweep has checked the value)."""
+    return read_toml(path, "sweep file").get("warm_start", False)
 
 
 def check_points(points, scene_dir="."):
@@ -160,8 +172,10 @@ def adopt_legacy_folders(runs_dir, runs):
 
 # ---- one run, in a worker process -----------------------------------------------------
 
-def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False):
+def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False, neighbours=None):
     """Solve one point into sweep_dir/runs/<name>/ unless it is done; return its name.
+    ``neighbours``: the sweep's (name, values) points; the run starts from the nearest
+    of them that has converged by then (orchestrate/warm_start.py), if any.
 
     Runs in an engine's worker process; never raises for a failed run: the reason goes
     into the run's summary.json (a run that failed outside its numbers, "error", is
@@ -174,7 +188,11 @@ def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False):
     try:
         from .solve import solve               # a worker process imports what it needs
         scene, settings = point_scene(values, scene_dir)
-        solve(scene, settings, folder, overwrite=True)
+        done = [(other, point) for other, point in neighbours or ()
+                if other != name and run_status(Path(sweep_dir) / "runs" / other) == "converged"]
+        source = nearest(values, done)
+        solve(scene, settings, folder, overwrite=True,
+              start_from=Path(sweep_dir) / "runs" / source[0] if source else None)
     except RunFailed:
         pass                                   # solve wrote the report
     except (SystemFailure, ParameterError) as error:
@@ -256,6 +274,8 @@ def gather(sweep_dir, runs):
         # a run older than a setting has no value for it: an empty cell
         row.update({f.name: settings.get(f.name) for f in fields(Settings)})
         row.update({key: summary.get(key) for key in SUMMARY_COLUMNS})
+        row["started_from"] = Path(summary["started_from"]).name if summary.get(
+            "started_from") else None
         row.update(_model_choice_columns(summary.get("model_choice")))
         row.update(_answer_columns(summary.get("answers")))
         rows.append(row)
@@ -342,7 +362,8 @@ class Progress:
 
 # ---- engines --------------------------------------------------------------------------
 
-def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False):
+def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False,
+              neighbours=None):
     """Local worker processes, at most ``jobs`` runs at once; ``pending`` holds (name,
     values) pairs.
 
@@ -360,7 +381,7 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False)
 
         def submit(source):                    # taken from its list once submitted
             future = pool.submit(run_point, *source[0], str(sweep_dir), str(scene_dir),
-                                 retry_failed)
+                                 retry_failed, neighbours)
             running[future] = source.pop(0)
         try:
             while queue or alone or running:
@@ -413,7 +434,8 @@ def _kill_pool(pool):
     pool.shutdown(wait=False, cancel_futures=True)
 
 
-def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retry_failed=False):
+def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retry_failed=False,
+             neighbours=None):
     """Dask distributed: a local cluster of ``jobs`` workers, or a scheduler's. A task
     whose workers keep dying (Dask retries it) is recorded as failed."""
     from dask.distributed import Client, LocalCluster, as_completed
@@ -424,7 +446,8 @@ def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retr
     client = Client(scheduler or cluster)
     try:
         futures = {client.submit(run_point, name, values, str(sweep_dir), str(scene_dir),
-                                 retry_failed, pure=False): name for name, values in pending}
+                                 retry_failed, neighbours, pure=False): name
+                   for name, values in pending}
         progress.update(running=min(jobs, len(futures)))
         for future in as_completed(futures):
             name = futures[future]
@@ -481,10 +504,13 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
                               if name not in waiting)
         try:
             if pending:
+                neighbours = runs if warm_start_of(path) else None
                 if engine == "dask":
-                    run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler, retry_failed)
+                    run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler,
+                             retry_failed, neighbours)
                 else:
-                    run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed)
+                    run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed,
+                              neighbours)
         finally:
             progress.close()
             remove_dead_run_leftovers(sweep_dir / "runs")  # of runs whose process died

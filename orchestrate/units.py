@@ -75,7 +75,7 @@ TIMER_PREFIXES = ("cpu_", "back_")   # history.csv: seconds per subdomain (cpu_b
 # Summary entries kept as they are: the scene is written as given (in its units), the
 # settings are in b and E by definition, the rest are counts by subdomain or texts.
 SUMMARY_AS_IS = ("scene", "settings", "status", "reason", "dofs", "units", "not_estimated",
-                 "estimated_unknowns", "model")
+                 "estimated_unknowns", "model", "started_from")
 
 
 @dataclass(frozen=True)

@@ -208,3 +208,14 @@ def test_the_mm_example_is_the_solver_scene_in_b_and_E():
     assert solved.modulus == 1.0 and solved.coatings[0].E == 2.0
     assert solved.indenter.radius == 50.0 and solved.load.force == 1000.0 / 210000.0
     assert solved.units.dimensionless and scene.units.length == "mm"
+
+
+def test_a_run_in_b_and_E_starts_from_its_twin_in_mm(twins, tmp_path):
+    """orchestrate/warm_start.py reads a run's files in their units: the twin in b and E,
+    started from the mm run's state, stops within a few iterations at its own answer."""
+    mm, twin = twins
+    summary = orchestrate.solve(twin.parent / "twin.toml").summary
+    started = orchestrate.solve(twin.parent / "twin.toml", {}, start_from=mm).summary
+    assert started["iterations"] <= 6 < summary["iterations"]
+    assert started["peak_contact_stress"] == pytest.approx(summary["peak_contact_stress"],
+                                                           rel=1e-6)
