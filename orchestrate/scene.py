@@ -40,6 +40,13 @@ SHAPES = ("block", "roller")
 METHODS = ("active-set", "paper")
 WORKERS = ("persistent", "fresh")
 DEFAULT_ROBIN = 2.0    # E/b
+PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
+# The accelerated loop's default penalty per unit length of an interface element (E):
+# theta = 2.5e-4 b/E on the paper's mesh (elements b/16), shrinking with the elements, so
+# that the penalty's error (0.013 % of the peak contact stress there, 0.0044 % at mesh
+# level 3) stays below the mesh's (results/penalty.csv, orchestrate/penalty.py); a
+# smaller theta costs that loop no iterations (README, "Penalty").
+THETA_PER_LENGTH = 4e-3
 
 
 def _require(condition, key, message):
@@ -357,7 +364,9 @@ class Scene:
 class Settings:
     """How the scene is solved: penalty, Robin loop, mesh."""
 
-    theta: float = 1.0e-3          # penalty parameter of (16), in b/E (E: Scene.modulus)
+    theta: Optional[float] = None  # penalty parameter of (16), in b/E (E: Scene.modulus);
+                                   # None: PAPER_THETA for the paper's loop, else
+                                   # THETA_PER_LENGTH times the interface element's length
     method: str = "active-set"     # Robin loop: "active-set" (accelerated) or "paper"
     robin: Optional[float] = None  # Robin parameter gamma, E/b; None: 1/theta (paper), 2
     rho: float = 0.5               # relaxation (24), in (0, 1]
@@ -374,6 +383,11 @@ class Settings:
     def __post_init__(self):
         _choice("workers", self.workers, WORKERS)
         _choice("method", self.method, METHODS)
+        _positive_int("mesh_level", self.mesh_level)
+        _positive("element_size", self.element_size)
+        if self.theta is None:          # the default, tied to the mesh (frozen: set once)
+            object.__setattr__(self, "theta", PAPER_THETA if self.method == "paper" else
+                               THETA_PER_LENGTH * self.element_size / self.mesh_level)
         _require(_finite(self.theta) and THETA_RANGE[0] <= self.theta <= THETA_RANGE[1], "theta",
                  f"theta = {self.theta!r} must lie in [{THETA_RANGE[0]:g}, {THETA_RANGE[1]:g}] "
                  "(b/E): a softer penalty is no contact law (the bodies pass through each "
@@ -396,8 +410,6 @@ class Settings:
                  "error estimate no longer bounds the error (measured: the bond shear 3.4 % "
                  "off at 1e-2)")
         _positive_int("max_iterations", self.max_iterations)
-        _positive_int("mesh_level", self.mesh_level)
-        _positive("element_size", self.element_size)
         _require(_finite(self.worker_timeout) and self.worker_timeout >= 1, "worker_timeout",
                  f"worker_timeout = {self.worker_timeout!r} must be at least 1 (seconds): a "
                  "worker's set-up alone takes a good part of a second")

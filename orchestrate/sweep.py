@@ -183,11 +183,16 @@ def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False, neighb
     from .errors import RunFailed, SystemFailure
 
     folder = Path(sweep_dir) / "runs" / name
-    if finished(folder, retry_failed):
+    try:
+        scene, settings = point_scene(values, scene_dir)
+    except ParameterError:
+        scene = settings = None                # refused again below, into its report
+    if finished(folder, retry_failed, settings):
         return name
     try:
         from .solve import solve               # a worker process imports what it needs
-        scene, settings = point_scene(values, scene_dir)
+        if settings is None:
+            scene, settings = point_scene(values, scene_dir)
         done = [(other, point) for other, point in neighbours or ()
                 if other != name and run_status(Path(sweep_dir) / "runs" / other) == "converged"]
         source = nearest(values, done)
@@ -205,11 +210,25 @@ def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False, neighb
     return name
 
 
-def finished(folder, retry_failed=False):
+def finished(folder, retry_failed=False, settings=None):
     """Whether a point's run is done: converged, or (unless retry_failed) not converged
-    for reasons of its numbers."""
+    for reasons of its numbers; and, given the point's ``settings``, solved with them. A
+    run whose recorded settings differ (a default changed since it ran, e.g. the
+    penalty's) is not done: it is run again rather than mixed with the new ones."""
     status = run_status(folder)
-    return status == "converged" or (status in NOT_CONVERGED and not retry_failed)
+    done = status == "converged" or (status in NOT_CONVERGED and not retry_failed)
+    return done and (settings is None or not _other_settings(folder, settings))
+
+
+def _other_settings(folder, settings):
+    """Whether the run in ``folder`` recorded a value other than ``settings``' for a
+    setting both know (a setting added since is not a difference)."""
+    try:
+        recorded = json.loads((Path(folder) / "summary.json").read_text()).get("settings")
+    except (OSError, ValueError):
+        return False
+    current = to_dict(settings)
+    return bool(recorded) and any(recorded[k] != current[k] for k in recorded if k in current)
 
 
 def run_status(folder):
@@ -495,7 +514,8 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
         runs = named_points(points)
         adopt_legacy_folders(sweep_dir / "runs", runs)
         pending = [(name, values) for name, values in runs
-                   if not finished(sweep_dir / "runs" / name, retry_failed)]
+                   if not finished(sweep_dir / "runs" / name, retry_failed,
+                                   point_scene(values, scene_dir)[1])]
         jobs = jobs or os.cpu_count() or 1
         progress = Progress(len(runs), stream)
         progress.done = len(runs) - len(pending)

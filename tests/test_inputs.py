@@ -93,3 +93,14 @@ def test_missing_freefem_is_reported_before_any_work(tmp_path):
     assert result.returncode == 2
     assert "FreeFEM not found" in result.stderr
     assert not out.exists()
+
+
+def test_the_default_penalty_follows_the_interface_elements():
+    """theta = 4e-3 E times the interface element's length (orchestrate/penalty.py shows
+    its error below the mesh's at levels 1-3); the paper's loop keeps the paper's 1e-3;
+    a theta given is kept."""
+    assert Settings().theta == pytest.approx(2.5e-4, rel=1e-12)
+    assert Settings(mesh_level=2).theta == pytest.approx(1.25e-4, rel=1e-12)
+    assert Settings(element_size=0.125).theta == pytest.approx(5e-4, rel=1e-12)
+    assert Settings(method="paper").theta == 1e-3
+    assert Settings(theta=1e-2).theta == 1e-2

@@ -8,6 +8,7 @@ round-off in absolute terms (1e-12), not relative; its error estimate, that resi
 times the amplification the history showed (up to 10^3-10^4) and a margin, to 1e-4
 relative (measured: 4e-6)."""
 
+import json
 import os
 import signal
 import subprocess
@@ -345,3 +346,25 @@ def test_the_sweep_pvd_opens_every_converged_run_one_time_step_each(uninterrupte
     done = table[table.converged.astype(bool)]
     assert [steps[k] for k in sorted(steps)] == [{name} for name in done.id]
     assert len(meshio.read(out / datasets[0].get("file")).points) > 0
+
+
+def test_a_run_solved_under_other_settings_is_run_again(tmp_path):
+    """A finished run whose recorded settings differ from its point's (a default changed
+    since, e.g. the penalty's) is run again rather than mixed with new runs; a run whose
+    summary lacks a setting added since is kept."""
+    path, out = tmp_path / "one.toml", tmp_path / "sweep"
+    path.write_text('[grid]\nh2 = [0.25]\n[fixed]\neps_u = 1e-4\nmodel = "elastic"\n')
+    first = run_sweep(path, out, jobs=1, stream=open(os.devnull, "w"))
+    summary_path = out / "runs" / first.id[0] / "summary.json"
+    summary = json.loads(summary_path.read_text())
+    theta = summary["settings"]["theta"]
+    del summary["settings"]["model_tolerance"]          # as if added after the run
+    summary_path.write_text(json.dumps(summary))
+    stamp = summary_path.stat().st_mtime_ns
+    run_sweep(path, out, jobs=1, stream=open(os.devnull, "w"))
+    assert summary_path.stat().st_mtime_ns == stamp     # kept
+    summary["settings"]["theta"] = 1e-3                 # as if solved under an old default
+    summary_path.write_text(json.dumps(summary))
+    again = run_sweep(path, out, jobs=1, stream=open(os.devnull, "w"))
+    assert json.loads(summary_path.read_text())["settings"]["theta"] == theta
+    assert again.converged.all() and again.theta[0] == theta
