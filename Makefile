@@ -20,18 +20,22 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 # ---- The paper's figures: every scene listed once, in a sweep file ---------------------
 # The sweep runs each scene once into results/figures/runs/ (runs.csv is written last; a
-# rerun skips finished runs); each figure takes the runs it needs.
+# rerun skips finished runs); each figure takes the runs it needs. An edited form or
+# solver source makes the runs stale: they are removed and solved again.
 FIGURE_SWEEP := orchestrate/sweeps/figures.toml
 FIGURE_RUNS := results/figures/runs.csv
+SOLVER_SOURCES := $(wildcard freefem/*.idp freefem/*.edp) \
+                  $(filter-out orchestrate/figures.py,$(wildcard orchestrate/*.py))
 
 figures: fig3 fig4 fig5
 fig3: results/fig3.png
 fig4: results/fig4.png
 fig5: results/fig5.png
 
-$(FIGURE_RUNS): $(FIGURE_SWEEP) | setup
+$(FIGURE_RUNS): $(FIGURE_SWEEP) $(SOLVER_SOURCES) | setup
+	$(if $(filter-out $(FIGURE_SWEEP),$?),rm -rf results/figures/runs)
 	$(PYTHON) -m orchestrate sweep $(FIGURE_SWEEP)
-results/fig%.png: $(FIGURE_RUNS) | setup
+results/fig%.png: $(FIGURE_RUNS) orchestrate/figures.py | setup
 	$(PYTHON) -m orchestrate.figures fig$* results/figures
 
 # ---- A discrete coating (orchestrate/scenes/discrete.toml), both coating models ------
