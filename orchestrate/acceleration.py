@@ -81,12 +81,9 @@ class Anderson:
         coefficients = np.linalg.solve(upper, q.T @ r)
         return g - d_images[:, order] @ coefficients
 
-    def _filter(self, columns):
-        """Indices of the columns kept, dropping the oldest dependent ones first."""
-        return sorted(self._filtered_qr(columns)[0])
-
     def _filtered_qr(self, columns):
-        """(the kept columns' indices, newest first; Q; R of their QR in that order)."""
+        """(the kept columns' indices, newest first, dropping the oldest dependent ones;
+        Q; R of their QR in that order)."""
         # more columns than unknowns cannot be independent: keep the newest ones
         newest, oldest = columns.shape[1] - 1, max(0, columns.shape[1] - columns.shape[0])
         order = list(range(newest, oldest - 1, -1))

@@ -55,7 +55,7 @@ def test_dependent_history_is_filtered():
     for _ in range(4):                      # the same pair again and again
         result = anderson.step(x, g)
         assert np.all(np.isfinite(result))
-    assert len(anderson._filter(np.array([[1.0, 2.0], [1.0, 2.0], [0.0, 0.0]]))) == 1
+    assert len(anderson._filtered_qr(np.array([[1.0, 2.0], [1.0, 2.0], [0.0, 0.0]]))[0]) == 1
 
 
 def test_the_answer_does_not_depend_on_the_loop(tmp_path):
