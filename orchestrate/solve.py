@@ -24,6 +24,7 @@ Numbers that did not converge are never written as results: a run that diverges 
 stagnates writes only history.csv and a summary.json that says why.
 """
 
+import contextlib
 import math
 import os
 import time
@@ -44,16 +45,20 @@ from .paraview import RUN_COLLECTION, write_collection
 from .problem_size import check_size
 from .robin import run_robin_loop
 from .scene import check_compatible, to_dict
+from .session import Session
 from .state import StateLayout
 from .subdomains import start_subdomains, write_inputs
 from .units import dimensionless, express_run, scaled_summary, summary_units
 from .warm_start import state_from_run
 
 
-def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None):
+def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None,
+          session=None):
     """Solve the scene; write results into ``out_dir``; return the summary dict.
     ``start_from``: a finished run's folder whose interface state is the first iterate
-    (orchestrate/warm_start.py; ignored where it shares no interface).
+    (orchestrate/warm_start.py; ignored where it shares no interface). ``session``: a
+    Session (orchestrate/session.py) that keeps workers from scene to scene; without
+    one, the run's workers stop with it.
 
     Before any work: ParameterError for a scene the settings cannot solve, a problem
     too large for the machine, or an output folder another run holds or is writing
@@ -63,10 +68,11 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     freefem.executable()             # a missing FreeFEM is reported before any work
     scene, problem, model_choice, scales = prepare(scene, settings)
     start = time.perf_counter()
-    with RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir:
+    with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
+          contextlib.nullcontext(session) if session is not None else Session() as workers):
         scratch = str(folder.scratch)
         files = write_inputs(problem, workdir)
-        with start_subdomains(problem, settings, files, workdir, scratch) as subdomains:
+        with start_subdomains(problem, settings, files, workers, scratch) as subdomains:
             setup_seconds = time.perf_counter() - start
             checkpoint("setup")
             first_iterate = (state_from_run(start_from, StateLayout(problem.interfaces))
@@ -81,6 +87,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             if loop.converged:
                 subdomains.write_outputs()   # the workers hold the fields of the last solve
             dofs = subdomains.dofs
+            kept = subdomains.kept
         summary = {
             "scene": to_dict(scene),         # as solved: "auto" patches with their model
             "settings": to_dict(settings),
@@ -98,6 +105,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             "started_from": (str(start_from) if first_iterate is not None
                              and settings.method != "paper" else None),
             "dofs": dofs,
+            "workers_kept": kept,
         }
         write_history(os.path.join(scratch, "history.csv"), loop.history)
         if loop.converged:

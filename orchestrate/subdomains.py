@@ -4,6 +4,9 @@ Every body (the indenter, the base, a 2D coating patch) runs freefem/body.edp an
 shell patch freefem/shell.edp, each on its own mesh or mid-line and sides file
 (orchestrate/exchange.py). Within a Robin iteration the solves are independent: every
 request is written before any reply is read, so the workers compute at the same time.
+The workers come from a Session (orchestrate/session.py), which may have kept them from
+an earlier scene; a kept worker's solves become evaluations of its Robin-to-trace map
+(orchestrate/robin_map.py).
 """
 
 import os
@@ -15,12 +18,15 @@ from .exchange import parse_reply, reply_count, request_arrays, write_sides
 from .mesh import body_mesh, coating_mesh, write_medit
 from .outputs import check_written, write_body_fields
 from .body_plans import BodyPlan
-from .worker import CMD_OUTPUT, CMD_SOLVE, Worker
+from .robin_map import check, receive_map, send_map_request
+from .session import body_fingerprint, files_fingerprint
+from .worker import CMD_SOLVE
 
 
 def write_inputs(problem, workdir):
     """Meshes, shell nodes and sides files of every subdomain, in ``workdir``; returns
-    {name: {"mesh" or "nodes": path, "sides": path}}."""
+    {name: {"mesh" or "nodes": path, "sides": path, "geometry": (fingerprint of what
+    they hold, the origin it is taken from)}} (orchestrate/session.py)."""
     try:
         return _write_inputs(problem, workdir)
     except OSError as error:
@@ -31,17 +37,21 @@ def _write_inputs(problem, workdir):
     files = {}
     for name, subdomain in problem.subdomains.items():
         files[name] = {"sides": os.path.join(workdir, f"{name}.sides")}
-        write_sides(files[name]["sides"], [(problem.interfaces[i], problem.interfaces[i].sides[k])
-                                           for i, k in problem.sides_of(name)])
+        sides = [(problem.interfaces[i], problem.interfaces[i].sides[k])
+                 for i, k in problem.sides_of(name)]
+        write_sides(files[name]["sides"], sides)
         plan = subdomain.plan
         if subdomain.kind == "body":
             files[name]["mesh"] = os.path.join(workdir, f"{name}.mesh")
             mesh = body_mesh(plan) if isinstance(plan, BodyPlan) else coating_mesh(plan)
             write_medit(mesh, files[name]["mesh"])
+            files[name]["geometry"] = body_fingerprint(mesh, sides)
         else:
             files[name]["nodes"] = os.path.join(workdir, f"{name}_nodes.txt")
             with open(files[name]["nodes"], "w") as out:
                 out.write(f"{len(plan.nodes)}\n" + "\n".join(map(repr, plan.nodes.tolist())) + "\n")
+            files[name]["geometry"] = files_fingerprint([files[name]["nodes"],
+                                                         files[name]["sides"]])
     return files
 
 
@@ -72,38 +82,60 @@ def load_arguments(problem):
     return ["-descent", scene.load.displacement]
 
 
-class Subdomains:
-    """Every subdomain as a persistent FreeFEM worker."""
+# Arguments that name a file: the worker's identity is the file's content (its geometry).
+_FILE_ARGUMENTS = {"-mesh", "-nodes", "-sides"}
 
-    def __init__(self, problem, files, workdir, output_dir):
+
+class Subdomains:
+    """Every subdomain of a run as a persistent FreeFEM worker, taken from ``session``.
+
+    ``use_maps``: a worker that serves its second scene gives its Robin-to-trace map
+    (robin_map.py), which stands in for its solves while the Robin coefficients are the
+    map's (the active-set loop's never change)."""
+
+    def __init__(self, problem, files, session, output_dir, use_maps=True):
         self.problem = problem
-        self.workdir = workdir
-        self.workers = {}
+        self.session = session
+        self.use_maps = use_maps
         self.sides = {name: problem.sides_of(name) for name in problem.subdomains}
-        self.specs, self.output_prefix = {}, {}
+        self.components = {name: [problem.interfaces[i].components for i, _ in self.sides[name]]
+                           for name in problem.subdomains}
+        self.specs, self.output_prefix, self.keys, self.origins = {}, {}, {}, {}
         for name, subdomain in problem.subdomains.items():
             script = "body.edp" if subdomain.kind == "body" else "shell.edp"
             self.output_prefix[name] = os.path.join(output_dir, name)
-            arguments = worker_arguments(subdomain, files[name]) + [
-                "-output", self.output_prefix[name]]
+            arguments = worker_arguments(subdomain, files[name])
             if subdomain.stamp:
                 arguments += load_arguments(problem)
             self.specs[name] = (script, arguments)
+            geometry, self.origins[name] = files[name]["geometry"]
+            numbers = [str(value) for flag, value in zip(arguments[::2], arguments[1::2])
+                       if flag not in _FILE_ARGUMENTS]
+            self.keys[name] = (script, geometry, tuple(arguments[::2]), tuple(numbers))
+        self.entries = {}
+        self.last_requests, self.mapped = {}, {}
         self.dofs = self._start()
 
     def _start(self):
-        """Start every worker (they assemble and factorise at once); return their dofs."""
+        """Take every worker (a new one assembles and factorises at once); return their
+        dofs."""
+        timeout = self.problem.settings.worker_timeout
         try:
             for name, (script, arguments) in self.specs.items():
-                self.workers[name] = Worker(name, script, arguments, self.workdir,
-                                            self.problem.settings.worker_timeout)
-            return {name: worker.wait_ready() for name, worker in self.workers.items()}
+                self.entries[name] = self.session.take(name, script, arguments, self.keys[name],
+                                                       self.origins[name], timeout)
+            return {name: self.session.ready(entry) for name, entry in self.entries.items()}
         except OSError as error:
-            self.close()
+            self._drop()
             raise system_failure(error, "starting the FreeFEM workers") from None
         except BaseException:
-            self.close()
+            self._drop()
             raise
+
+    @property
+    def kept(self):
+        """The subdomains whose worker an earlier scene started."""
+        return [name for name, entry in self.entries.items() if entry.scenes > 1]
 
     def solve(self, data):
         """One independent solve per subdomain.
@@ -114,11 +146,20 @@ class Subdomains:
         driver's wall time from the first request sent to the last reply) and the
         stamp's descent."""
         start = time.perf_counter()
-        for name, worker in self.workers.items():
-            worker.send(CMD_SOLVE, request_arrays(self.sides[name], data))
+        requests = {name: request_arrays(self.sides[name], data) for name in self.entries}
+        self._ask_maps(requests)
+        for name, entry in self.entries.items():
+            self.mapped[name] = (entry.robin_map is not None
+                                 and entry.robin_map.serves(requests[name]))
+            if not self.mapped[name]:
+                entry.worker.send(CMD_SOLVE, requests[name])
+        self.last_requests = requests
         traces, seconds, descent = {}, {}, None
-        for name, worker in self.workers.items():
-            arrays = worker.receive_arrays(reply_count(self.problem, self.sides[name]))
+        for name, entry in self.entries.items():
+            if self.mapped[name]:
+                arrays = entry.robin_map.reply(requests[name])
+            else:
+                arrays = entry.worker.receive_arrays(reply_count(self.problem, self.sides[name]))
             received, info = parse_reply(self.problem, self.sides[name], arrays)
             traces.update(received)
             seconds[name], seconds[f"back_{name}"] = float(info[0]), float(info[1])
@@ -127,29 +168,55 @@ class Subdomains:
         seconds["wait"] = time.perf_counter() - start
         return traces, seconds, descent
 
+    def _ask_maps(self, requests):
+        """The maps of the workers that serve their second scene, all asked at once."""
+        if not self.use_maps:
+            return
+        wanted = [name for name, entry in self.entries.items()
+                  if entry.robin_map is None and entry.scenes >= 2]
+        for name in wanted:
+            send_map_request(self.entries[name].worker, requests[name])
+        for name in wanted:
+            entry = self.entries[name]
+            entry.robin_map = receive_map(entry.worker, requests[name], self.components[name])
+
     def write_outputs(self):
         """Ask every worker to write its fields (CSV) and reactions next to its output
-        prefix, check that every file is whole, and write each body's VTU from them."""
-        for worker in self.workers.values():
-            worker.send(CMD_OUTPUT)
+        prefix, check that every file is whole, and write each body's VTU from them. A
+        worker whose last solve was its map's solves for real first (its fields), and its
+        traces must agree with the map's."""
+        real = [name for name, mapped in self.mapped.items() if mapped]
+        for name in real:
+            self.entries[name].worker.send(CMD_SOLVE, self.last_requests[name])
+        for name in real:
+            entry = self.entries[name]
+            reply = entry.worker.receive_arrays(reply_count(self.problem, self.sides[name]))
+            check(entry.worker.name, entry.robin_map, self.last_requests[name], reply)
+        for name, entry in self.entries.items():
+            entry.worker.send_output(self.output_prefix[name],
+                                     self.origins[name] - entry.origin)
         checkpoint("output")
-        for name, worker in self.workers.items():
-            written, = worker.receive_arrays(1)
+        for name, entry in self.entries.items():
+            written, = entry.worker.receive_arrays(1)
             kind = self.problem.subdomains[name].kind
             check_written(self.output_prefix[name], kind, written)
             if kind == "body":
                 write_body_fields(self.output_prefix[name])
 
-    def close(self):
-        for worker in self.workers.values():
-            worker.stop()
-        self.workers = {}
+    def _drop(self):
+        """Stop this run's workers (a failed run leaves none to the next)."""
+        for name in list(self.entries):
+            self.session.drop(self.keys[name])
+        self.entries = {}
 
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
-        self.close()
+    def __exit__(self, exc_type, *exc):
+        if exc_type is None:
+            self.session.keep_only({self.keys[name] for name in self.entries})
+        else:
+            self._drop()
 
 
 class FreshProcessSubdomains(Subdomains):
@@ -158,8 +225,8 @@ class FreshProcessSubdomains(Subdomains):
     (``--workers fresh``); the answers are the same."""
 
     def __init__(self, *arguments):
-        super().__init__(*arguments)
-        self.close()
+        super().__init__(*arguments, use_maps=False)
+        self._drop()
         self.last_data = None
 
     def solve(self, data):
@@ -168,7 +235,7 @@ class FreshProcessSubdomains(Subdomains):
         try:
             traces, seconds, descent = super().solve(data)
         finally:
-            self.close()
+            self._drop()
         self.last_data = data
         seconds["wait"] = time.perf_counter() - start
         return traces, seconds, descent
@@ -179,10 +246,11 @@ class FreshProcessSubdomains(Subdomains):
             super().solve(self.last_data)
             super().write_outputs()
         finally:
-            self.close()
+            self._drop()
 
 
-def start_subdomains(problem, settings, files, workdir, output_dir):
+def start_subdomains(problem, settings, files, session, output_dir):
     """The workers of a run: persistent (default) or a fresh process per solve."""
-    kind = FreshProcessSubdomains if settings.workers == "fresh" else Subdomains
-    return kind(problem, files, workdir, output_dir)
+    if settings.workers == "fresh":
+        return FreshProcessSubdomains(problem, files, session, output_dir)
+    return Subdomains(problem, files, session, output_dir, use_maps=settings.method != "paper")

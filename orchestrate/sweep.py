@@ -197,7 +197,8 @@ def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False, neighb
                 if other != name and run_status(Path(sweep_dir) / "runs" / other) == "converged"]
         source = nearest(values, done)
         solve(scene, settings, folder, overwrite=True,
-              start_from=Path(sweep_dir) / "runs" / source[0] if source else None)
+              start_from=Path(sweep_dir) / "runs" / source[0] if source else None,
+              session=_process_session)
     except RunFailed:
         pass                                   # solve wrote the report
     except (SystemFailure, ParameterError) as error:
@@ -246,11 +247,23 @@ def write_report(folder, report):
         run.commit()
 
 
+# A local engine's worker process keeps the FreeFEM workers of its last run for the next
+# (orchestrate/session.py); elsewhere (a direct call, Dask) each run has its own.
+_process_session = None
+
+
 def _worker_init(driver):
-    """Local worker processes die with the driver (and their FreeFEM workers with them)."""
+    """Local worker processes die with the driver (and their FreeFEM workers with them),
+    and keep a Session, closed when the process ends."""
+    from multiprocessing.util import Finalize
+
+    from .session import Session
     from .worker import die_with_parent
 
+    global _process_session
     die_with_parent(driver)
+    _process_session = Session()
+    Finalize(_process_session, _process_session.close, exitpriority=10)
 
 
 # ---- the table ------------------------------------------------------------------------

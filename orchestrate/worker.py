@@ -22,7 +22,7 @@ import numpy as np
 from . import freefem
 from .errors import SystemFailure
 
-CMD_STOP, CMD_SOLVE, CMD_OUTPUT = 0, 1, 2   # as in freefem/exchange.idp
+CMD_STOP, CMD_SOLVE, CMD_OUTPUT, CMD_MAP = 0, 1, 2, 3   # as in freefem/exchange.idp
 _POLL_SECONDS = 0.05
 DEFAULT_TIMEOUT = 600.0    # seconds a worker may take to answer (Settings.worker_timeout)
 
@@ -56,14 +56,16 @@ def die_with_parent(parent=None):
 
 
 class Worker:
-    """One FreeFEM process; ``name`` labels its FIFOs and log inside ``workdir``."""
+    """One FreeFEM process; ``name`` (its subdomain's) names it in messages, ``stem`` (by
+    default the name) its FIFOs and log inside ``workdir``."""
 
-    def __init__(self, name, script, arguments, workdir, timeout=DEFAULT_TIMEOUT):
+    def __init__(self, name, script, arguments, workdir, timeout=DEFAULT_TIMEOUT, stem=None):
         self.name = name
         self.timeout = timeout
-        self.request_path = os.path.join(workdir, f"{name}.request")
-        self.reply_path = os.path.join(workdir, f"{name}.reply")
-        self.log_path = os.path.join(workdir, f"{name}.log")
+        stem = stem or name
+        self.request_path = os.path.join(workdir, f"{stem}.request")
+        self.reply_path = os.path.join(workdir, f"{stem}.reply")
+        self.log_path = os.path.join(workdir, f"{stem}.log")
         self.process = None
         self._request_fd = self._reply_fd = None
         command = freefem.command(script, [*arguments, "-request", self.request_path,
@@ -99,6 +101,13 @@ class Worker:
             array = np.asarray(array, dtype=float)
             parts.append(f"{array.size}\n" + " ".join(map(repr, array.tolist())))
         self._write(("\n".join(parts) + "\n").encode())
+
+    def send_output(self, prefix, shift=(0.0, 0.0)):
+        """Ask for the fields under ``prefix``, the body's coordinates shifted by
+        ``shift`` (the scene's place of a body whose mesh the worker read at another)."""
+        if "\n" in prefix:
+            raise ValueError(f"an output path cannot hold a line break: {prefix!r}")
+        self._write(f"{CMD_OUTPUT}\n{float(shift[0])!r} {float(shift[1])!r}\n{prefix}\n".encode())
 
     def receive_arrays(self, count):
         """Read a reply made of ``count`` count-first arrays."""

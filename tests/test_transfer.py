@@ -16,6 +16,7 @@ from orchestrate.discretization import discretize
 from orchestrate.exchange import parse_reply, reply_count, request_arrays
 from orchestrate.scene import Settings
 from orchestrate.scene_file import SCENES_DIR, load_scene, paper_scene
+from orchestrate.session import Session
 from orchestrate.subdomains import Subdomains, write_inputs
 from orchestrate.worker import CMD_SOLVE
 
@@ -36,9 +37,9 @@ def workers(request, tmp_path_factory):
     else:
         scene, _ = load_scene(SCENES_DIR / "roller.toml")
     problem = discretize(scene, Settings())
-    subdomains = Subdomains(problem, write_inputs(problem, workdir), workdir, workdir)
-    yield problem, subdomains
-    subdomains.close()
+    with Session() as session:
+        subdomains = Subdomains(problem, write_inputs(problem, workdir), session, workdir)
+        yield problem, subdomains
 
 
 def _send(problem, subdomains, name, data):
@@ -53,7 +54,7 @@ def _send(problem, subdomains, name, data):
             full[i, side] = (np.zeros(interface.size), np.zeros((interface.components, interface.size)))
         else:
             full[i, side] = (np.full(interface.size, STIFF), np.atleast_2d(given))
-    worker = subdomains.workers[name]
+    worker = subdomains.entries[name].worker
     worker.send(CMD_SOLVE, request_arrays(sides, full))
     arrays = worker.receive_arrays(reply_count(problem, sides))
     return parse_reply(problem, sides, arrays)[0]
