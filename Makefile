@@ -27,16 +27,17 @@ FIGURE_RUNS := results/figures/runs.csv
 SOLVER_SOURCES := $(wildcard freefem/*.idp freefem/*.edp) \
                   $(filter-out orchestrate/figures.py,$(wildcard orchestrate/*.py))
 
+FIGURES := results/fig3.png results/fig4.png results/fig5.png
+
 figures: fig3 fig4 fig5
-fig3: results/fig3.png
-fig4: results/fig4.png
-fig5: results/fig5.png
+fig3 fig4 fig5: $(FIGURES)
 
 $(FIGURE_RUNS): $(FIGURE_SWEEP) $(SOLVER_SOURCES) | setup
 	$(if $(filter-out $(FIGURE_SWEEP),$?),rm -rf results/figures/runs)
 	$(PYTHON) -m orchestrate sweep $(FIGURE_SWEEP)
-results/fig%.png: $(FIGURE_RUNS) orchestrate/figures.py | setup
-	$(PYTHON) -m orchestrate.figures fig$* results/figures
+# One process draws the three (each figure alone would import matplotlib again).
+$(FIGURES) &: $(FIGURE_RUNS) orchestrate/figures.py | setup
+	$(PYTHON) -m orchestrate.figures all results/figures
 
 # ---- A discrete coating (orchestrate/scenes/discrete.toml), both coating models ------
 DISCRETE_RUNS := $(foreach m,shell elastic,results/discrete/$(m)/summary.json)

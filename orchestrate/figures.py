@@ -232,14 +232,16 @@ FIGURES = {"fig3": fig3, "fig4": fig4, "fig5": fig5}
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description="Draw one of the paper's figures.")
-    parser.add_argument("figure", choices=sorted(FIGURES))
+    parser = argparse.ArgumentParser(description="Draw one of the paper's figures, or all.")
+    parser.add_argument("figure", choices=sorted(FIGURES) + ["all"])
     parser.add_argument("runs", nargs="+",
                         help="run folders (or their summary.json), or a sweep's folder")
     parser.add_argument("--out", default=str(RESULTS_DIR))
     args = parser.parse_args(argv)
-    FIGURES[args.figure](load_runs(args.runs), args.out)
-    print(os.path.join(args.out, f"{args.figure}.png"))
+    runs = load_runs(args.runs)
+    for name in sorted(FIGURES) if args.figure == "all" else [args.figure]:
+        FIGURES[name](runs, args.out)
+        print(os.path.join(args.out, f"{name}.png"))
 
 
 if __name__ == "__main__":

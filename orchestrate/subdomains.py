@@ -111,7 +111,9 @@ class Subdomains:
             geometry, self.origins[name] = files[name]["geometry"]
             numbers = [str(value) for flag, value in zip(arguments[::2], arguments[1::2])
                        if flag not in _FILE_ARGUMENTS]
-            self.keys[name] = (script, geometry, tuple(arguments[::2]), tuple(numbers))
+            key = (script, geometry, tuple(arguments[::2]), tuple(numbers))
+            # equal patches of one scene (a shell's files hold no place) get a worker each
+            self.keys[name] = key + (sum(k[:-1] == key for k in self.keys.values()),)
         self.entries = {}
         self.last_requests, self.mapped = {}, {}
         self.dofs = self._start()

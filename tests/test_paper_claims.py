@@ -42,7 +42,7 @@ def test_make_draws_the_figures_from_the_one_list_of_scenes():
     make = subprocess.run(["make", "-n", "-B", "fig3"], cwd=PROJECT_DIR, capture_output=True,
                           text=True).stdout
     assert "-m orchestrate sweep orchestrate/sweeps/figures.toml" in make
-    assert "-m orchestrate.figures fig3 results/figures" in make
+    assert "-m orchestrate.figures all results/figures" in make
     assert len(FIGURE_SCENES) == 24
     assert {(m, E2) for m, _, E2 in FIGURE_SCENES} == {
         ("shell", 5.0), ("shell", 1.0), ("elastic", 5.0), ("elastic", 1.0), ("elastic", 0.2)}

@@ -155,3 +155,14 @@ def test_a_map_that_disagrees_with_a_solve_is_refused():
     with pytest.raises(WorkerError, match="map and its solve differ"):
         check("w", robin_map, request, solved)
     assert not robin_map.serves([np.full(2, 2.0), np.zeros(2)])     # another alpha
+
+
+def test_equal_patches_of_one_scene_each_have_a_worker(tmp_path):
+    """A shell's files hold no place in the plane: the discrete coating's equal patches
+    have one fingerprint, yet each needs a worker of its own (one worker for two would
+    wait for ever on the second request)."""
+    scene, values = load_scene(SCENES_DIR / "discrete.toml")
+    settings = Settings(**values)
+    with Session() as session:
+        summary = solve(scene, settings, str(tmp_path / "run"), session=session)
+        assert len(session._entries) == len(summary["dofs"])
