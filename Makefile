@@ -30,7 +30,7 @@ SOLVER_SOURCES := $(wildcard freefem/*.idp freefem/*.edp) \
 FIGURES := results/fig3.png results/fig4.png results/fig5.png
 
 figures: fig3 fig4 fig5
-fig3 fig4 fig5: $(FIGURES)
+fig3 fig4 fig5: $(FIGURES) ; @:
 
 $(FIGURE_RUNS): $(FIGURE_SWEEP) $(SOLVER_SOURCES) | setup
 	$(if $(filter-out $(FIGURE_SWEEP),$?),rm -rf results/figures/runs)
@@ -77,10 +77,12 @@ test: setup
 
 # Speed against accuracy on the figure scenes (about 15 minutes; the fine references
 # are computed once into results/reference/): results/bench.csv, speed_accuracy.png;
-# the penalty's error against the mesh's at levels 1-3: results/penalty.csv.
+# the penalty's error against the mesh's at levels 1-3: results/penalty.csv; what workers
+# kept from scene to scene save: results/session.csv, session_sweep.csv.
 bench: setup
 	$(PYTHON) -m orchestrate.bench
 	$(PYTHON) -m orchestrate.penalty
+	$(PYTHON) -m orchestrate.bench_session
 
 # Where each method fails: a sweep of 102 runs (resumable), then its maps and charts
 # (results/stability/). Errors use the fine references of `make bench` where they exist.

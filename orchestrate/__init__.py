@@ -11,6 +11,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 from .api import Result, solve  # noqa: E402
 from .scene import Scene, Settings  # noqa: E402
 from .scene_file import load_scene, paper_scene  # noqa: E402
+from .session import Session  # noqa: E402
 from .units import Units  # noqa: E402
 
-__all__ = ["Result", "Scene", "Settings", "Units", "load_scene", "paper_scene", "solve"]
+__all__ = ["Result", "Scene", "Session", "Settings", "Units", "load_scene", "paper_scene",
+           "solve"]

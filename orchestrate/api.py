@@ -89,18 +89,21 @@ def _read(folder):
     return tables, fields, files
 
 
-def solve(scene, settings=None, progress=None, start_from=None):
+def solve(scene, settings=None, progress=None, start_from=None, session=None):
     """Solve ``scene`` (a Scene, or the path of a scene file) with ``settings`` (Settings,
     a dict of setting values, or None: the defaults or the file's); return its Result.
     ``start_from``: a finished run (a Result or a run folder) of a nearby scene, whose
     interface state starts the loop (orchestrate/warm_start.py): fewer iterations, the
-    same answer. Raises as orchestrate/solve.py's solve does: ParameterError before any
-    work, RunFailed (with the summary) if the loop does not converge, SystemFailure."""
+    same answer. ``session``: a Session whose workers the scenes solved in it share
+    where their bodies are the same (orchestrate/session.py). Raises as
+    orchestrate/solve.py's solve does: ParameterError before any work, RunFailed (with
+    the summary) if the loop does not converge, SystemFailure."""
     scene, settings = _scene_and_settings(scene, settings)
     with tempfile.TemporaryDirectory(prefix="orchestrate-api-") as scratch:
         if isinstance(start_from, Result):       # its files, as a folder to read
             start_from = start_from.save(Path(scratch) / "start")
         out = Path(scratch) / "run"
-        summary = run.solve(scene, settings, out, progress=progress, start_from=start_from)
+        summary = run.solve(scene, settings, out, progress=progress, start_from=start_from,
+                            session=session)
         tables, fields, files = _read(out)
     return Result(summary=summary, fields=fields, files=files, **tables)
