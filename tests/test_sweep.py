@@ -96,6 +96,18 @@ def test_an_auto_run_is_a_row_with_the_model_chosen_and_its_estimate(uninterrupt
     assert 0 <= auto.model_error_estimate.iloc[0] <= 0.01
 
 
+def test_a_local_sweep_s_runs_take_over_the_workers_of_the_run_before(uninterrupted):
+    """Each worker process keeps its last run's workers (orchestrate/session.py): the
+    points share the indenter (shifted) and the base, so every run after a process's
+    first takes those over. Their answers are those of runs alone: the Dask engine runs
+    each alone, and its table is this one (test_the_dask_engine_runs_the_same_sweep)."""
+    _, out = uninterrupted
+    kept = [json.loads(path.read_text()).get("workers_kept")
+            for path in (out / "runs").glob("*/summary.json")]
+    assert len(kept) == RUNS
+    assert sum("indenter" in (names or []) and "base" in names for names in kept) >= RUNS - 4
+
+
 def test_a_finished_sweep_is_not_run_again(sweep_file, uninterrupted):
     _, out = uninterrupted
     before = {name: os.stat(out / "runs" / name).st_mtime_ns for name in os.listdir(out / "runs")}
