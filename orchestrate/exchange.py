@@ -6,8 +6,9 @@ points" of each; then, side by side, count-first arrays: the weights omega, the 
 every point (a body: x1, x2; a shell: xi), and for every component its coefficients (a
 body: c1, c2; a shell: cV, cW, cG).
 
-Request (CmdSolve): for every side of the subdomain, in interface order, its Robin
-coefficient alpha, then its data g, one array per component.
+Request (CmdSolve, CmdMap): for every side of the subdomain, in interface order, its
+Robin coefficient alpha, then its data g, one array per component. (CmdMap's reply and
+CmdOutput's request: freefem/robin.idp, orchestrate/robin_map.py, Worker.send_output.)
 
 Reply: for every side, in the same order, its trace, one array per component; then
 [CPU seconds of the request, of its back-substitution, the stamp's descent].

@@ -28,38 +28,28 @@ class RobinMap:
     def __init__(self, alphas, components, matrix, constant, descent_row, descent0):
         self.alphas = [np.array(a, dtype=float) for a in alphas]
         self.components = list(components)
+        self.starts = _side_starts(components)      # each side's alpha in a request
         self.matrix = matrix
         self.constant = constant
         self.descent_row = descent_row
         self.descent0 = descent0
 
-    def data_of(self, arrays):
-        """(alphas, g) of a request's arrays, read with this subdomain's layout."""
-        alphas, data, i = [], [], 0
-        for components in self.components:
-            alphas.append(np.asarray(arrays[i], dtype=float))
-            data.extend(np.asarray(g, dtype=float) for g in arrays[i + 1:i + 1 + components])
-            i += 1 + components
-        return alphas, np.concatenate(data)
-
     def serves(self, arrays):
         """Whether the request has the map's Robin coefficients."""
-        alphas, _ = self.data_of(arrays)
-        return all(np.array_equal(a, b) for a, b in zip(alphas, self.alphas))
+        return all(np.array_equal(arrays[i], alpha)
+                   for i, alpha in zip(self.starts, self.alphas))
 
     def reply(self, arrays):
         """The worker's reply to a solve request (its traces, then [seconds, 0, descent]),
         from the map."""
         start = time.process_time()
-        alphas, g = self.data_of(arrays)
+        data = [arrays[i + 1 + c] for i, components in zip(self.starts, self.components)
+                for c in range(components)]
+        g = np.concatenate(data)
         traces = self.matrix @ g + self.constant
         descent = float(self.descent_row @ g + self.descent0)
-        out, at = [], 0
-        for alpha, components in zip(alphas, self.components):
-            for _ in range(components):
-                out.append(traces[at:at + len(alpha)])
-                at += len(alpha)
-        return out + [np.array([time.process_time() - start, 0.0, descent])]
+        ends = np.cumsum([len(d) for d in data])[:-1]
+        return np.split(traces, ends) + [np.array([time.process_time() - start, 0.0, descent])]
 
 
 def send_map_request(worker, arrays):

@@ -89,10 +89,9 @@ class Session:
     """The workers of the last scene served, by fingerprint (see the module's text)."""
 
     def __init__(self):
-        self._folder = None
+        self._folder = self._path = None
         self._entries = {}
         self._names = itertools.count()
-        self.reused = 0          # workers taken over from an earlier scene
 
     def __enter__(self):
         return self
@@ -112,11 +111,8 @@ class Session:
         """The entry of a worker that reads what ``fingerprint`` stands for: kept from an
         earlier scene, or started now (not yet ready: call ``ready``)."""
         entry = self._entries.get(fingerprint)
-        if entry is not None and entry.worker.process.poll() is None:
-            self.reused += 1
-        else:
-            if entry is not None:
-                self.drop(fingerprint)
+        if entry is None or entry.worker.process.poll() is not None:
+            self.drop(fingerprint)                  # a kept worker that has died
             worker = Worker(name, script, arguments, self.folder, timeout,
                             stem=f"{name}-{next(self._names)}")
             entry = self._entries[fingerprint] = Entry(worker, None, np.asarray(origin))
