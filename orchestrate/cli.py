@@ -22,7 +22,7 @@ from .errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT_INTERRUPTE
                      EXIT_NOT_CONVERGED,
                      EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure)
 from .freefem import FreeFemMissing
-from .scene import METHODS, MODEL_CHOICES, WORKERS, Settings
+from .scene import INNER_SOLVES, METHODS, MODEL_CHOICES, WORKERS, Settings
 from .scene_file import SHORTHANDS, scene_and_settings
 
 EXIT_STATUSES = """exit status:
@@ -38,6 +38,8 @@ _SETTINGS_HELP = {
     "theta": "penalty parameter (b/E); default: the paper's 1e-3 for its loop, else 4e-3 "
              "times the interface element's length (2.5e-4 on the paper's mesh)",
     "method": "Robin loop: accelerated active-set loop, or the paper's fixed relaxation",
+    "inner_solve": "active-set loop: each contact set's fixed point solved directly from "
+                   "the subdomains' Robin maps, iterated, or direct where the maps cost less",
     "robin": "Robin parameter gamma (E/b); default 1/theta for the paper's loop, else 2",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
@@ -49,7 +51,8 @@ _SETTINGS_HELP = {
     "model_tolerance": "with --model auto: the estimated relative error of the peak contact "
                        "stress the chosen coating model may have",
 }
-_CHOICES = {"model": MODEL_CHOICES, "method": METHODS, "workers": WORKERS}
+_CHOICES = {"model": MODEL_CHOICES, "method": METHODS, "inner_solve": INNER_SOLVES,
+            "workers": WORKERS}
 
 
 def _option(name):

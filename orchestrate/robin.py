@@ -41,12 +41,34 @@ import numpy as np
 from .acceleration import Anderson
 from .contact import penetration, updated_active_set
 from .faults import checkpoint
+from .interface_system import InterfaceSystem
 from .state import StateLayout
 
 
-def robin_data(problem, layout, x, psi, theta, gamma, hold_inactive=False):
-    """Robin coefficients and data of every side of every interface, for the state x^k
-    and the contact set Psi (concatenated over the contact interfaces).
+@dataclass
+class RobinLaw:
+    """One side's Robin condition sigma_n(u) + alpha u = alpha g, its data affine in the
+    state: g = own u + other_u u' + other_t t' + constant, with u the side's own trace and
+    u', t' the other side's trace and traction (coefficients per point, the same for
+    every component; ``constant`` of shape (components, points)). The loop evaluates it
+    (``robin_data``) and the direct solve of a frozen contact set assembles it
+    (orchestrate/interface_system.py): one law for both."""
+    alpha: np.ndarray
+    own: np.ndarray
+    other_u: np.ndarray
+    other_t: np.ndarray
+    constant: np.ndarray
+
+    def data(self, u, u_other, t_other):
+        """g for the side's trace u and the other side's u', t' (shape (points,) or
+        (components, points)), of shape (components, points)."""
+        g = self.own * u + self.other_u * u_other + self.other_t * t_other + self.constant
+        return np.atleast_2d(g)
+
+
+def robin_laws(problem, layout, psi, theta, gamma, hold_inactive=False):
+    """The Robin law of every side of every interface for the contact set Psi
+    (concatenated over the contact interfaces): ``{(i, side): RobinLaw}``.
 
     Interface laws (16): on a contact where Psi = 1, t = (d - u_A - u_B)/theta on both
     sides (normal tractions, compression negative), elsewhere t = 0; on a bond the
@@ -63,28 +85,38 @@ def robin_data(problem, layout, x, psi, theta, gamma, hold_inactive=False):
 
     ``hold_inactive``: alpha = gamma on all of a contact, and where Psi = 0 the data is
     the side's own trace, g = u^k. The fixed point is the same (there t = gamma (u - u) =
-    0), but no matrix depends on Psi any more: the workers factorise once per run.
-
-    Returns ``{(i, side): (alpha, g)}``, g of shape (components, points)."""
+    0), but no matrix depends on Psi any more: the workers factorise once per run."""
     c = 1.0 - gamma * theta
-    data = {}
+    laws = {}
     psi_of = dict((i, psi[where]) for i, where in layout.contact_slices())
     for i, interface in enumerate(problem.interfaces):
-        u = [layout.get(x, "u", i, side) for side in (0, 1)]
-        t = [layout.get(x, "t", i, side) for side in (0, 1)]
+        n, ones, zeros = interface.size, np.ones(interface.size), np.zeros(interface.size)
         for side in (0, 1):
-            other = 1 - side
             if interface.kind == "contact":
-                alpha = gamma * psi_of[i]
-                g = interface.gap - u[other] + c * t[other] / gamma
+                active = psi_of[i] > 0
                 if hold_inactive:
-                    alpha = np.full(interface.size, gamma)
-                    g = np.where(psi_of[i] > 0, g, u[side])
-                g = g[None, :]
+                    law = RobinLaw(np.full(n, gamma), np.where(active, 0.0, 1.0),
+                                   np.where(active, -1.0, 0.0), np.where(active, c / gamma, 0.0),
+                                   np.where(active, interface.gap, 0.0)[None, :])
+                else:
+                    law = RobinLaw(gamma * psi_of[i], zeros, -ones, np.full(n, c / gamma),
+                                   np.asarray(interface.gap, dtype=float)[None, :])
             else:
-                alpha = np.full(interface.size, gamma)
-                g = u[other] - c * t[other] / gamma
-            data[i, side] = (alpha, g)
+                law = RobinLaw(np.full(n, gamma), zeros, ones, np.full(n, -c / gamma),
+                               np.zeros((2, n)))
+            laws[i, side] = law
+    return laws
+
+
+def robin_data(layout, x, laws):
+    """Robin coefficients and data of every side for the state x^k under ``laws``
+    (robin_laws): ``{(i, side): (alpha, g)}``, g of shape (components, points)."""
+    data = {}
+    for (i, side), law in laws.items():
+        other = 1 - side
+        g = law.data(layout.get(x, "u", i, side), layout.get(x, "u", i, other),
+                     layout.get(x, "t", i, other))
+        data[i, side] = (law.alpha, g)
     return data
 
 
@@ -191,17 +223,21 @@ class ConvergenceMonitor:
         return None
 
 
-def run_robin_loop(solve, problem, settings, progress=None, start=None):
+def run_robin_loop(solve, problem, settings, progress=None, start=None, robin_maps=None):
     """Iterate until converged or stopped; the workers keep the fields of the last solve.
 
     ``solve(data)`` performs the subdomain solves at once and returns the traces of every
     side, each worker's CPU seconds and the stamp's descent (orchestrate/subdomains.py).
     ``start``: the active-set loop's first iterate (orchestrate/warm_start.py), else
-    zero; the paper's loop always starts from zero, as the paper's does."""
+    zero; the paper's loop always starts from zero, as the paper's does.
+    ``robin_maps(data)``: every subdomain's Robin map at the coefficients of ``data``, or
+    None (Subdomains.robin_maps); with them the active-set loop solves each contact
+    set's fixed point directly (orchestrate/interface_system.py)."""
     if settings.method == "paper":
         return _PaperLoop(solve, problem, settings, progress).run()
     loop = _ActiveSetLoop(solve, problem, settings, progress)
     loop.start_state = start
+    loop.robin_maps = robin_maps
     return loop.run()
 
 
@@ -233,11 +269,15 @@ class _Loop:
         self.start = time.perf_counter()
         self.descent = None
         self.estimate = math.inf
+        self.direct = False       # whether this iteration solved its contact set directly
+
+    def laws(self, psi):
+        return robin_laws(self.problem, self.layout, psi, self.problem.penalty, self.gamma,
+                          self.hold_inactive)
 
     def iterate(self, x, psi):
         """Solve every subdomain for the state x and the contact set psi; return x~."""
-        data = robin_data(self.problem, self.layout, x, psi, self.problem.penalty, self.gamma,
-                          self.hold_inactive)
+        data = robin_data(self.layout, x, self.laws(psi))
         traces, seconds, self.descent = self.solve(data)
         self.seconds = seconds
         return state_after_solve(self.layout, data, traces)
@@ -262,6 +302,7 @@ class _Loop:
             "contact_force": -0.5 * float(np.dot(layout.contact_weight,
                                                  traction * layout.contact_normal_x2)),
             "descent": self.descent,
+            "direct": self.direct,
             "seconds": time.perf_counter() - self.start,
             "wait": self.seconds["wait"],
         }
@@ -404,6 +445,7 @@ class _ActiveSetLoop(_Loop):
 
     window = 200
     start_state = None        # the first iterate (warm start), else zero
+    robin_maps = None         # the subdomains' maps, when all have one (interface_system.py)
     hold_inactive = True      # constant matrices: each worker factorises once (measured:
                               # +5-10 iterations, -40 % wall time on the figure scenes)
 
@@ -419,17 +461,29 @@ class _ActiveSetLoop(_Loop):
             psi = (layout.gap <= np.min(layout.gap) + 1e-12 * np.max(layout.gap)).astype(float)
         previous_psi, update, seen = None, 0, {psi.tobytes()}
         tolerance = max(eps, ACTIVE_SET_TOLERANCE)
+        system = self.interface_system(x, psi)
         for iteration in range(1, self.settings.max_iterations + 1):
+            self.direct = system is not None
+            if system is not None:
+                x, refined = system.fixed_point(self.laws(psi))
+                rounding = max(self.relative_change(refined, x))
             image = self.iterate(x, psi)
             change = self.relative_change(image, x)
             failure = self.monitor.check(iteration, image, max(change[:2]))
             new_psi = updated_active_set(psi, self.penetration(image),
                                          contact_traction(layout, image))
             psi_settled = np.array_equal(new_psi, psi)
-            x_next = anderson.step(x, image)
-            self.estimate = (self.error_estimate(image, x, anderson, scale)
-                             if anderson.secants >= MIN_SECANTS else math.inf)
+            if system is not None:
+                # image is x up to rounding; the refinement step sizes the rounding
+                self.estimate = ESTIMATE_MARGIN * max(rounding, max(change))
+                x_next = image
+            else:
+                x_next = anderson.step(x, image)
+                self.estimate = (self.error_estimate(image, x, anderson, scale)
+                                 if anderson.secants >= MIN_SECANTS else math.inf)
             done, reason = self.converged(self.estimate)
+            if system is not None and psi_settled and not done:
+                system = None     # too ill-conditioned to solve directly: iterate on
             if done and psi_settled:
                 self.record(image, psi, previous_psi, change, update, "converged")
                 return self.result(image, psi, "converged", f"contact set settled, {reason}")
@@ -451,3 +505,14 @@ class _ActiveSetLoop(_Loop):
             else:
                 x = x_next
         raise AssertionError("the monitor stops at max_iterations")
+
+    def interface_system(self, x, psi):
+        """The frozen-set system of the subdomains' Robin maps, or None where some
+        subdomain has none (its solves are then iterated)."""
+        if self.robin_maps is None:
+            return None
+        maps = self.robin_maps(robin_data(self.layout, x, self.laws(psi)))
+        if maps is None:
+            return None
+        sides = {name: self.problem.sides_of(name) for name in maps}
+        return InterfaceSystem(self.layout, sides, maps)

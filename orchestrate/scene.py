@@ -38,6 +38,7 @@ PROFILES = ("circle", "parabola")
 FACE_MESHES = ("shaped", "flat")
 SHAPES = ("block", "roller")
 METHODS = ("active-set", "paper")
+INNER_SOLVES = ("auto", "direct", "iterate")   # a frozen contact set's fixed point (robin.py)
 WORKERS = ("persistent", "fresh")
 DEFAULT_ROBIN = 2.0    # E/b
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
@@ -368,6 +369,9 @@ class Settings:
                                    # None: PAPER_THETA for the paper's loop, else
                                    # THETA_PER_LENGTH times the interface element's length
     method: str = "active-set"     # Robin loop: "active-set" (accelerated) or "paper"
+    inner_solve: str = "auto"      # active-set loop, each contact set's fixed point:
+                                   # "direct" from the subdomains' Robin maps, "iterate"
+                                   # (Anderson), "auto": direct where the maps cost less
     robin: Optional[float] = None  # Robin parameter gamma, E/b; None: 1/theta (paper), 2
     rho: float = 0.5               # relaxation (24), in (0, 1]
     eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
@@ -383,6 +387,13 @@ class Settings:
     def __post_init__(self):
         _choice("workers", self.workers, WORKERS)
         _choice("method", self.method, METHODS)
+        _choice("inner_solve", self.inner_solve, INNER_SOLVES)
+        _require(not (self.method == "paper" and self.inner_solve == "direct"), "inner_solve",
+                 "inner_solve = 'direct' needs method = 'active-set': the paper's loop "
+                 "updates its contact set at every iteration and has no fixed point to solve")
+        _require(not (self.workers == "fresh" and self.inner_solve == "direct"), "inner_solve",
+                 "inner_solve = 'direct' needs workers = 'persistent': a fresh process per "
+                 "solve keeps no factorisation to probe the maps with")
         _positive_int("mesh_level", self.mesh_level)
         _positive("element_size", self.element_size)
         if self.theta is None:          # the default, tied to the mesh (frozen: set once)

@@ -77,7 +77,8 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             checkpoint("setup")
             first_iterate = (state_from_run(start_from, StateLayout(problem.interfaces))
                              if start_from is not None else None)
-            loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate)
+            loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate,
+                                  subdomains.robin_maps)
             if loop.converged:
                 reached = zone_end_reached(problem, loop.psi)
                 if reached is not None:
@@ -102,6 +103,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             "setup_time_s": setup_seconds,
             "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
             "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
+            "inner_solve_used": _inner_solve_used(loop.history),
             "started_from": (str(start_from) if first_iterate is not None
                              and settings.method != "paper" else None),
             "dofs": dofs,
@@ -134,6 +136,15 @@ def prepare(scene, settings):
     check_size(problem)
     return (scene.with_models([c.model for c in solved.coatings]), problem, model_choice,
             scales)
+
+
+def _inner_solve_used(history):
+    """How the loop reached its contact sets' fixed points: "direct", "iterate", or
+    "direct, then iterate" (a system too ill-conditioned to solve directly)."""
+    direct = [row["direct"] for row in history]
+    if all(direct):
+        return "direct"
+    return "direct, then iterate" if direct[0] else "iterate"
 
 
 def zone_end_reached(problem, psi):

@@ -82,6 +82,13 @@ def load_arguments(problem):
     return ["-descent", scene.load.displacement]
 
 
+# Probing a map costs one back-substitution per interface unknown, in-process, about 0.4
+# of what a Robin iteration of the loop costs a worker of the same size; the loop takes
+# 100-160 iterations on the example scenes. So the maps pay while every new worker has at
+# most this many interface unknowns, weighted by its dofs over the largest worker's
+# (Subdomains._maps_pay; `python -m orchestrate.bench_direct` times both ways).
+MAP_UNKNOWNS = 250
+
 # Arguments that name a file: the worker's identity is the file's content (its geometry).
 _FILE_ARGUMENTS = {"-mesh", "-nodes", "-sides"}
 
@@ -91,9 +98,12 @@ class Subdomains:
 
     ``use_maps``: a worker that serves its second scene gives its Robin-to-trace map
     (robin_map.py), which stands in for its solves while the Robin coefficients are the
-    map's (the active-set loop's never change)."""
+    map's (the active-set loop's never change). ``inner_solve`` (Settings): with
+    "direct", every new worker gives its map too, and with every map known the loop
+    solves each contact set's fixed point directly (robin_maps); "auto" does so where
+    the maps pay (_maps_pay); "iterate" never."""
 
-    def __init__(self, problem, files, session, output_dir, use_maps=True):
+    def __init__(self, problem, files, session, output_dir, use_maps=True, inner_solve="auto"):
         self.problem = problem
         self.session = session
         self.use_maps = use_maps
@@ -114,9 +124,21 @@ class Subdomains:
             key = (script, geometry, tuple(arguments[::2]), tuple(numbers))
             # equal patches of one scene (a shell's files hold no place) get a worker each
             self.keys[name] = key + (sum(k[:-1] == key for k in self.keys.values()),)
+        self.unknowns = {name: sum(problem.interfaces[i].size * problem.interfaces[i].components
+                                   for i, _ in self.sides[name]) for name in problem.subdomains}
         self.entries = {}
         self.last_requests, self.mapped = {}, {}
         self.dofs = self._start()
+        self.direct = use_maps and inner_solve != "iterate"
+        self.map_new = self.direct and (inner_solve == "direct" or self._maps_pay())
+
+    def _maps_pay(self):
+        """Whether probing the new workers' maps costs less than the Robin iterations a
+        direct solve of each contact set saves (MAP_UNKNOWNS; the workers work side by
+        side, a back-substitution costs about its worker's dofs)."""
+        largest = max(self.dofs.values())
+        return all(self.unknowns[name] * self.dofs[name] <= MAP_UNKNOWNS * largest
+                   for name, entry in self.entries.items() if entry.scenes == 1)
 
     def _start(self):
         """Take every worker (a new one assembles and factorises at once); return their
@@ -170,12 +192,27 @@ class Subdomains:
         seconds["wait"] = time.perf_counter() - start
         return traces, seconds, descent
 
+    def robin_maps(self, data):
+        """Every subdomain's Robin map at the coefficients of ``data`` (robin.robin_data),
+        asked now of the workers that have none; None unless every worker is to be
+        mapped."""
+        if not (self.direct and all(self._to_map(entry) for entry in self.entries.values())):
+            return None
+        requests = {name: request_arrays(self.sides[name], data) for name in self.entries}
+        self._ask_maps(requests)
+        maps = {name: entry.robin_map for name, entry in self.entries.items()}
+        return maps if all(maps[name].serves(requests[name]) for name in maps) else None
+
+    def _to_map(self, entry):
+        return self.map_new or entry.scenes >= 2
+
     def _ask_maps(self, requests):
-        """The maps of the workers that serve their second scene, all asked at once."""
+        """The maps of the workers that serve their second scene (every worker's, with
+        ``map_new``), all asked at once."""
         if not self.use_maps:
             return
         wanted = [name for name, entry in self.entries.items()
-                  if entry.robin_map is None and entry.scenes >= 2]
+                  if entry.robin_map is None and self._to_map(entry)]
         for name in wanted:
             send_map_request(self.entries[name].worker, requests[name])
         for name in wanted:
@@ -255,4 +292,5 @@ def start_subdomains(problem, settings, files, session, output_dir):
     """The workers of a run: persistent (default) or a fresh process per solve."""
     if settings.workers == "fresh":
         return FreshProcessSubdomains(problem, files, session, output_dir)
-    return Subdomains(problem, files, session, output_dir, use_maps=settings.method != "paper")
+    return Subdomains(problem, files, session, output_dir, use_maps=settings.method != "paper",
+                      inner_solve=settings.inner_solve)

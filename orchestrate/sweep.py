@@ -270,7 +270,8 @@ def _worker_init(driver):
 
 # a run's outcome in its row, from its summary.json; the other columns say what was run
 SUMMARY_COLUMNS = ("status", "reason", "converged", "iterations", "final_relative_change",
-                   "error_estimate", "active_set_changes", "contact_force", "total_force",
+                   "error_estimate", "active_set_changes", "inner_solve_used", "contact_force",
+                   "total_force",
                    "descent", "interface_force", "peak_contact_stress",
                    "peak_interface_stress", "contact_half_width", "wall_time_s",
                    "setup_time_s", "time_per_iteration_s")

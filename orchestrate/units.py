@@ -62,7 +62,7 @@ KINDS = {
     **{name: NUMBER for name in (
         "gamma", "epsilon", "iteration", "relative_change", "displacement_change",
         "traction_change", "traction_component_change", "error_estimate", "active_points",
-        "active_set_changed", "active_set_update", "iterations", "final_relative_change",
+        "active_set_changed", "active_set_update", "direct", "iterations", "final_relative_change",
         "active_set_changes", "tolerance", "patch", "estimated_error",
         "h2_over_a", "contact", "bond", "shell", "stretch_shell", "elastic",
         "mesh_dependent", "converged")},
@@ -75,7 +75,7 @@ TIMER_PREFIXES = ("cpu_", "back_")   # history.csv: seconds per subdomain (cpu_b
 # Summary entries kept as they are: the scene is written as given (in its units), the
 # settings are in b and E by definition, the rest are counts by subdomain or texts.
 SUMMARY_AS_IS = ("scene", "settings", "status", "reason", "dofs", "units", "not_estimated",
-                 "estimated_unknowns", "model", "started_from")
+                 "estimated_unknowns", "model", "started_from", "inner_solve_used")
 
 
 @dataclass(frozen=True)

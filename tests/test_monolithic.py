@@ -45,6 +45,8 @@ def _off_centre_full_model():
 TIGHT = Settings(eps_u=1e-10)
 CASES = {
     "paper, shell, active-set loop": (paper_scene(), TIGHT),
+    "paper, shell, iterated contact sets": (paper_scene(), Settings(eps_u=1e-10,
+                                                                    inner_solve="iterate")),
     "paper, shell, paper loop, theta 1": (
         paper_scene(), Settings(method="paper", theta=1.0, eps_u=1e-10, max_iterations=2000)),
     "paper, 2D coating, h2 b/8": (paper_scene(model="elastic"), TIGHT),

@@ -108,9 +108,9 @@ def _is_running(pid):
 def test_a_force_load_is_carried_by_the_indenter_s_map(tmp_path):
     """A stamp under a force: its descent follows from the data, so the map carries a
     descent row. The same scene twice in a session: the second, on maps, gives the
-    first's answer and descent."""
+    first's answer and descent (both iterated: the first run alone would probe no maps)."""
     scene, values = load_scene(SCENES_DIR / "cylinder.toml")
-    settings = Settings(**values)
+    settings = Settings(**values, inner_solve="iterate")
     with Session() as session:
         first = solve(scene, settings, str(tmp_path / "first"), session=session)
         again = solve(scene, settings, str(tmp_path / "again"), session=session)

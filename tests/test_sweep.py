@@ -58,15 +58,24 @@ def uninterrupted(sweep_file, tmp_path_factory):
     return run_sweep(sweep_file, out, jobs=2, stream=open(os.devnull, "w")), out
 
 
+# A run that solved its contact sets directly has an error estimate of rounding size,
+# which differs between a map probed in the run and one kept from the run before.
+ROUNDING = 1e-10
+
+
 def _same_table(a, b):
     assert list(a.columns) == list(b.columns)
+    rounding = (a.error_estimate < ROUNDING) & (b.error_estimate < ROUNDING)
     for column in a.columns:
         if column.endswith("_s"):
             continue
         if column == "final_relative_change":
             np.testing.assert_allclose(a[column], b[column], rtol=0, atol=1e-12, err_msg=column)
         elif column == "error_estimate":
-            np.testing.assert_allclose(a[column], b[column], rtol=1e-4, atol=0, err_msg=column)
+            np.testing.assert_allclose(a[column][~rounding], b[column][~rounding], rtol=1e-4,
+                                       atol=0, err_msg=column)
+        elif column == "reason":       # it quotes the estimate
+            assert a[column][~rounding].tolist() == b[column][~rounding].tolist(), column
         elif pd.api.types.is_float_dtype(a[column]) and pd.api.types.is_float_dtype(b[column]):
             np.testing.assert_allclose(a[column], b[column], rtol=1e-9, atol=0, err_msg=column)
         else:
