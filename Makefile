@@ -78,11 +78,14 @@ test: setup
 # Speed against accuracy on the figure scenes (about 15 minutes; the fine references
 # are computed once into results/reference/): results/bench.csv, speed_accuracy.png;
 # the penalty's error against the mesh's at levels 1-3: results/penalty.csv; what workers
-# kept from scene to scene save: results/session.csv, session_sweep.csv.
+# kept from scene to scene save: results/session.csv, session_sweep.csv; each contact set
+# solved directly against iterated and against the monolithic solve, mesh levels 1-3:
+# results/direct.csv, direct_figure_scenes.csv.
 bench: setup
 	$(PYTHON) -m orchestrate.bench
 	$(PYTHON) -m orchestrate.penalty
 	$(PYTHON) -m orchestrate.bench_session
+	$(PYTHON) -m orchestrate.bench_direct
 
 # Where each method fails: a sweep of 102 runs (resumable), then its maps and charts
 # (results/stability/). Errors use the fine references of `make bench` where they exist.

@@ -99,8 +99,9 @@ def _save(figure, name, data, out_dir):
     whole). The layout is made once: laying out a figure of many panels costs as much
     as drawing it (measured on fig. 5: 1.5 s of the 3.3 s of each file)."""
     os.makedirs(out_dir, exist_ok=True)
-    figure.canvas.draw()
-    figure.set_layout_engine("none")
+    if figure.get_layout_engine() is not None:
+        figure.canvas.draw()
+        figure.set_layout_engine("none")
     for extension in ("png", "pdf"):
         path = os.path.join(out_dir, f"{name}.{extension}")
         written(path, lambda partial: figure.savefig(partial, dpi=150, format=extension))
@@ -188,8 +189,10 @@ def p2_triangulation(x, y, cells, values, n=6):
 
 def fig5(runs, out_dir):
     moduli, heights = [0.2, 1.0, 5.0], [1.0, 0.5, 0.25, 0.125]
+    # a fixed layout: the panels are alike, and laying them out would cost a third draw
     figure, axes = plt.subplots(len(heights), len(moduli), figsize=(14, 10.5), squeeze=False,
-                                layout="constrained")
+                                gridspec_kw=dict(left=0.05, right=0.99, bottom=0.06, top=0.92,
+                                                 wspace=0.12, hspace=0.5))
     data = []
     for column, E2 in enumerate(moduli):
         for row, h2 in enumerate(heights):

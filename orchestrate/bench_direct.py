@@ -1,0 +1,114 @@
+"""Benchmark: each contact set solved directly from the subdomains' maps, against the
+iterated loop and the monolithic solve (not a test).
+
+1. Scenes: the paper's (2D coating, b/8, 5E) at mesh levels 1-3 and the example scenes,
+   each solved with inner_solve = "iterate" and "direct" (Settings), with what "auto"
+   chooses, and the paper's scene by the monolithic solve: wall time, iterations, the
+   peak contact stress's difference between the two ways, the time to an answer
+   against the monolithic solve's.
+2. The figure scenes one after another in one Session (workers kept; no warm start), at
+   mesh levels 1 and 3, default settings: iterations (contact sets, where solved
+   directly) per scene, their median and maximum and growth from level 1 to 3.
+
+    python -m orchestrate.bench_direct     # prints the tables, writes results/direct*.csv
+"""
+
+import argparse
+import dataclasses
+import os
+import tempfile
+import time
+from pathlib import Path
+
+import pandas as pd
+
+from .monolithic import monolithic_solution
+from .paths import RESULTS_DIR
+from .scene import Settings
+from .scene_file import SCENES_DIR, load_scene, paper_scene
+from .session import Session
+from .solve import solve
+from .sweep import load_sweep, named_points, point_scene
+
+FIGURE_SWEEP = Path(__file__).parent / "sweeps" / "figures.toml"
+LEVELS = (1, 2, 3)
+
+
+def scenes():
+    """(name, scene, settings) of part 1."""
+    paper = paper_scene(h2=0.125, E2=5.0, model="elastic")
+    cases = [(f"paper 2D b/8 5E, level {level}", paper, Settings(mesh_level=level))
+             for level in LEVELS]
+    cases.append(("paper shell b/8 E", paper_scene(h2=0.125, E2=1.0, model="shell"),
+                  Settings()))
+    for name in ("cylinder", "roller", "discrete"):
+        scene, values = load_scene(SCENES_DIR / f"{name}.toml")
+        cases.append((name, scene, Settings(**values)))
+    return cases
+
+
+def both_ways(out):
+    rows = []
+    for name, scene, settings in scenes():
+        row = {"scene": name, "mesh_level": settings.mesh_level}
+        for way in ("iterate", "direct", "auto"):
+            summary = solve(scene, dataclasses.replace(settings, inner_solve=way),
+                            os.path.join(out, f"{name}-{way}"))
+            if way == "auto":
+                row["auto_chooses"] = summary["inner_solve_used"]
+                continue
+            row[f"wall_s_{way}"] = summary["wall_time_s"]
+            row[f"iterations_{way}"] = summary["iterations"]
+            row[f"peak_{way}"] = summary["peak_contact_stress"]
+        row["direct_over_iterate"] = row["wall_s_direct"] / row["wall_s_iterate"]
+        row["peak_difference"] = abs(row["peak_direct"] / row["peak_iterate"] - 1)
+        if name.startswith("paper 2D"):
+            start = time.perf_counter()
+            monolithic_solution(scene, settings)
+            row["wall_s_monolithic"] = time.perf_counter() - start
+            row["best_over_monolithic"] = (min(row["wall_s_direct"], row["wall_s_iterate"])
+                                           / row["wall_s_monolithic"])
+        rows.append(row)
+        print(rows[-1], flush=True)
+    return pd.DataFrame(rows)
+
+
+def figure_scenes(out, level):
+    """A row per figure scene, solved one after the other in one Session at ``level``."""
+    rows = []
+    with Session() as session:
+        for name, values in named_points(load_sweep(FIGURE_SWEEP)[1]):
+            scene, settings = point_scene(values, FIGURE_SWEEP.parent)
+            settings = dataclasses.replace(settings, mesh_level=level)
+            summary = solve(scene, settings, os.path.join(out, f"L{level}-{name}"),
+                            session=session)
+            rows.append({"mesh_level": level, "scene": name,
+                         "iterations": summary["iterations"],
+                         "inner_solve_used": summary["inner_solve_used"],
+                         "wall_s": summary["wall_time_s"]})
+    return pd.DataFrame(rows)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default=str(RESULTS_DIR))
+    args = parser.parse_args(argv)
+    with tempfile.TemporaryDirectory() as out:
+        table = both_ways(out)
+        figures = pd.concat([figure_scenes(out, level) for level in (1, 3)], ignore_index=True)
+    with pd.option_context("display.width", 220):
+        print(table.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
+    counts = figures.groupby("mesh_level").agg(
+        median=("iterations", "median"), maximum=("iterations", "max"),
+        direct=("inner_solve_used", lambda used: int((used == "direct").sum())),
+        scenes=("scene", "size"), wall_s=("wall_s", "sum"))
+    print("\nfigure scenes in one session, iterations per scene:\n" + counts.to_string())
+    growth = counts["median"].iloc[-1] / counts["median"].iloc[0] - 1
+    print(f"median iterations from level 1 to 3: {growth:+.0%}")
+    os.makedirs(args.out, exist_ok=True)
+    table.to_csv(os.path.join(args.out, "direct.csv"), index=False)
+    figures.to_csv(os.path.join(args.out, "direct_figure_scenes.csv"), index=False)
+
+
+if __name__ == "__main__":
+    main()
