@@ -74,7 +74,9 @@ FACTORS = {
     "M11": MOMENT,
     **dict.fromkeys(["gamma", "epsilon", "n0", "n1", "n2", "n3", "n4", "n5"], 1.0),
 }
-HISTORY_SAME = ("iteration", "relative_change", "active_points")   # the iterations agree
+# the iterations agree (the twins are iterated: a run that solves its contact sets directly
+# has fixed-point residuals of rounding size, which no scaling keeps)
+HISTORY_SAME = ("iteration", "relative_change", "active_points")
 
 
 @pytest.fixture(scope="module")
@@ -84,7 +86,7 @@ def twins(tmp_path_factory):
     for name, units, values in (("mm", MM_UNITS, IN_MM), ("twin", "", DIMENSIONLESS)):
         path = folder / f"{name}.toml"
         path.write_text(TWIN.format(units=units, **values))
-        runs[name] = orchestrate.solve(path).save(folder / name)
+        runs[name] = orchestrate.solve(path, {"inner_solve": "iterate"}).save(folder / name)
     return runs["mm"], runs["twin"]
 
 
