@@ -129,3 +129,21 @@ def test_a_force_load_is_solved_directly_through_the_maps_descent_row(tmp_path):
 def test_a_direct_solve_the_settings_cannot_give_is_refused(settings, message):
     with pytest.raises(ParameterError, match=message):
         Settings(**settings)
+
+
+def test_a_system_too_ill_conditioned_for_its_tolerance_hands_over_to_the_iterations(
+        tmp_path, monkeypatch, both_ways):
+    """Where one step of refinement moves the direct solution by more than eps_u, the
+    loop goes on with Anderson iterations from it, and still reaches the iterated answer."""
+    solve_directly = InterfaceSystem.fixed_point
+
+    def rough(self, laws):                # a refinement step as large as 10 eps_u
+        state, refined = solve_directly(self, laws)
+        return state, refined * (1 + 10 * EPS_U)
+
+    monkeypatch.setattr(InterfaceSystem, "fixed_point", rough)
+    scene = paper_scene(h2=0.125, E2=5.0, model="elastic")
+    summary = solve(scene, Settings(eps_u=EPS_U, inner_solve="direct"), str(tmp_path / "run"))
+    assert summary["converged"] and summary["inner_solve_used"] == "direct, then iterate"
+    contact = pd.read_csv(tmp_path / "run" / "contact.csv")
+    assert _relative_l2(contact.sigma_n, both_ways["iterate"][1].sigma_n) < 2 * EPS_U
