@@ -2,19 +2,19 @@
 
 With every subdomain's Robin-to-trace map known (orchestrate/robin_map.py), one Robin
 iteration for a frozen contact set Psi is an affine map of the Robin data g of all
-sides: the traces are u = M g + m (M has a block per subdomain), each side's traction
-is t = alpha (g - u), and the next data are g' = own u + other_u Pu + other_t Pt +
-constant by the sides' Robin laws (robin.robin_laws; P takes every entry to the same
-point and component of the interface's other side). Its fixed point, the penalised
-problem's solution for that Psi, solves
+sides: the state of the interfaces (robin.py: every side's trace u and traction t) is
+x = S g + s0, the traces u = M g + m (M has a block per subdomain) and the tractions
+t = alpha (g - u); the next data are g = L x + h by the sides' Robin laws
+(robin.robin_laws, written as coefficients: own trace, the other side's trace and
+traction). Its fixed point, the penalised problem's solution for that Psi, solves
 
-    (I - B) g = c,   B = own M + other_u P M + other_t P alpha (I - M),
+    (I - L S) g = L s0 + h,
 
 a dense system of the size of the interface traces. Solved directly, each contact set
 costs one solve of it instead of the tens of accelerated Robin iterations that approach
-its fixed point (whose linear convergence the Robin parameter cannot speed up much:
-METHOD.md's map has eigenvalues near 1 wherever a coating is bonded). The contact-set
-updates around it are then semi-smooth Newton steps with an exact Jacobian.
+its fixed point (whose convergence the Robin parameter cannot speed up much: the map has
+eigenvalues near 1 wherever a coating is bonded). The contact-set updates around it are
+then semi-smooth Newton steps with an exact Jacobian.
 """
 
 import numpy as np
@@ -35,44 +35,47 @@ class InterfaceSystem:
                                    for i, side in sides[name]])
             self.matrix[np.ix_(rows, rows)] = robin_map.matrix
             self.constant[rows] = robin_map.constant
-        self.other = np.empty(size, dtype=int)   # P as an index: (P v)[k] = v[other[k]]
+        self.other = np.empty(size, dtype=int)   # the same point of the interface's other side
         for (kind, i, side), where in layout.slices.items():
             if kind == "u":
                 self.other[_entries(where)] = _entries(layout.slices["u", i, 1 - side])
 
-    def _per_entry(self, laws):
-        """The laws' coefficients at every trace entry, and their constants."""
-        names = ("alpha", "own", "other_u", "other_t")
-        coefficients = {name: np.empty(self.size) for name in names}
-        constant = np.empty(self.size)
+    def laws_matrix(self, laws):
+        """(L, h, alpha): the data g = L x + h of the state x under ``laws``, and the
+        Robin coefficient of every trace entry."""
+        n = self.size
+        coefficients = {name: np.empty(n) for name in ("alpha", "own", "other_u", "other_t")}
+        h = np.empty(n)
         for (i, side), law in laws.items():
             where = self.layout.slices["u", i, side]
             components = law.constant.shape[0]
-            for name in names:
-                coefficients[name][where] = np.tile(getattr(law, name), components)
-            constant[where] = np.ravel(law.constant)
-        return coefficients, constant
+            for name, values in coefficients.items():
+                values[where] = np.tile(getattr(law, name), components)
+            h[where] = np.ravel(law.constant)
+        rows = np.arange(n)
+        L = np.zeros((n, 2 * n))
+        L[rows, rows] = coefficients["own"]
+        L[rows, self.other] += coefficients["other_u"]
+        L[rows, n + self.other] = coefficients["other_t"]
+        return L, h, coefficients["alpha"]
+
+    def state_matrix(self, alpha):
+        """(S, s0): the state x = S g + s0 the subdomains answer to the data g."""
+        M, m = self.matrix, self.constant
+        S = np.vstack([M, alpha[:, None] * (np.eye(self.size) - M)])
+        return S, np.concatenate([m, -alpha * m])
 
     def fixed_point(self, laws):
         """(state, refined): the state at the fixed point for ``laws``, and the state after
         one step of iterative refinement; their difference estimates the first's
         rounding error."""
-        k, constant = self._per_entry(laws)
-        M, m, other = self.matrix, self.constant, self.other
-        weight = k["other_t"] * k["alpha"][other]
-        shifted = M[other]
-        system = -(k["own"][:, None] * M + k["other_u"][:, None] * shifted
-                   - weight[:, None] * shifted)
-        system[np.arange(self.size), other] -= weight
-        system[np.diag_indices(self.size)] += 1.0
-        right = k["own"] * m + (k["other_u"] - weight) * m[other] + constant
+        L, h, alpha = self.laws_matrix(laws)
+        S, s0 = self.state_matrix(alpha)
+        system = np.eye(self.size) - L @ S
+        right = L @ s0 + h
         g = np.linalg.solve(system, right)
         correction = np.linalg.solve(system, right - system @ g)
-        return self._state(g, k["alpha"]), self._state(g + correction, k["alpha"])
-
-    def _state(self, g, alpha):
-        u = self.matrix @ g + self.constant
-        return np.concatenate([u, alpha * (g - u)])
+        return S @ g + s0, S @ (g + correction) + s0
 
 
 def _entries(where):
