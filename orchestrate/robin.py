@@ -223,7 +223,8 @@ class ConvergenceMonitor:
         return None
 
 
-def run_robin_loop(solve, problem, settings, progress=None, start=None, robin_maps=None):
+def run_robin_loop(solve, problem, settings, progress=None, start=None, robin_maps=None,
+                   coarse=None):
     """Iterate until converged or stopped; the workers keep the fields of the last solve.
 
     ``solve(data)`` performs the subdomain solves at once and returns the traces of every
@@ -232,12 +233,14 @@ def run_robin_loop(solve, problem, settings, progress=None, start=None, robin_ma
     zero; the paper's loop always starts from zero, as the paper's does.
     ``robin_maps(data)``: every subdomain's Robin map at the coefficients of ``data``, or
     None (Subdomains.robin_maps); with them the active-set loop solves each contact
-    set's fixed point directly (orchestrate/interface_system.py)."""
+    set's fixed point directly (orchestrate/interface_system.py). ``coarse``: a
+    CoarseCorrection (orchestrate/coarse.py) for the iterated active-set loop."""
     if settings.method == "paper":
         return _PaperLoop(solve, problem, settings, progress).run()
     loop = _ActiveSetLoop(solve, problem, settings, progress)
     loop.start_state = start
     loop.robin_maps = robin_maps
+    loop.coarse = coarse
     return loop.run()
 
 
@@ -419,6 +422,18 @@ def _contraction_bound(changes, window):
     return changes[-1] * q / (1.0 - q) if q < 1 else math.inf
 
 
+def first_contact_set(scene, layout, x, supported=False):
+    """Psi of the state x: where the bodies interpenetrate; under a force, or when
+    ``supported``, at least the points the indenter touches first (without a support
+    the problem of a force is singular, and so is the whole interface system of a body
+    held only by its contact: interface_system.py)."""
+    psi = (penetration(layout.gap, layout.contact(x, "u", 0), layout.contact(x, "u", 1))
+           < 0).astype(float)
+    if (scene.load.force is not None or supported) and not psi.any():
+        psi = (layout.gap <= np.min(layout.gap) + 1e-12 * np.max(layout.gap)).astype(float)
+    return psi
+
+
 class _ActiveSetLoop(_Loop):
     """Anderson-accelerated Robin iterations for a frozen Psi, Psi updated in between.
 
@@ -446,6 +461,7 @@ class _ActiveSetLoop(_Loop):
     window = 200
     start_state = None        # the first iterate (warm start), else zero
     robin_maps = None         # the subdomains' maps, when all have one (interface_system.py)
+    coarse = None             # a CoarseCorrection (coarse.py): first iterate, preconditioner
     hold_inactive = True      # constant matrices: each worker factorises once (measured:
                               # +5-10 iterations, -40 % wall time on the figure scenes)
 
@@ -454,14 +470,16 @@ class _ActiveSetLoop(_Loop):
         scale = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
         scale = scale * np.sqrt(layout.entry_weight)
         anderson = Anderson(scale, parts=layout.parts)
-        x = layout.zeros() if self.start_state is None else self.start_state.copy()
-        psi = (self.penetration(x) < 0).astype(float)
-        if self.problem.scene.load.force is not None and not psi.any():
-            # under a force, the indenter needs a support: the points it touches first
-            psi = (layout.gap <= np.min(layout.gap) + 1e-12 * np.max(layout.gap)).astype(float)
+        if self.start_state is not None:
+            x = self.start_state.copy()
+        elif self.coarse is not None:
+            x = self.coarse.first_state()
+        else:
+            x = layout.zeros()
+        system = self.interface_system(x)
+        psi = first_contact_set(self.problem.scene, layout, x, supported=system is not None)
         previous_psi, update, seen = None, 0, {psi.tobytes()}
         tolerance = max(eps, ACTIVE_SET_TOLERANCE)
-        system = self.interface_system(x, psi)
         for iteration in range(1, self.settings.max_iterations + 1):
             self.direct = system is not None
             if system is not None:
@@ -478,8 +496,12 @@ class _ActiveSetLoop(_Loop):
                 self.estimate = ESTIMATE_MARGIN * max(rounding, max(change))
                 x_next = image
             else:
-                x_next = anderson.step(x, image)
-                self.estimate = (self.error_estimate(image, x, anderson, scale)
+                # Anderson on x + M (image - x), M the coarse correction's (or I): the
+                # same fixed point, and the estimate from that map's own secants
+                target = (image if self.coarse is None
+                          else image + self.coarse.correction(psi, image - x))
+                x_next = anderson.step(x, target)
+                self.estimate = (self.error_estimate(target, x, anderson, scale)
                                  if anderson.secants >= MIN_SECANTS else math.inf)
             done, reason = self.converged(self.estimate)
             if system is not None and psi_settled and not done:
@@ -506,12 +528,13 @@ class _ActiveSetLoop(_Loop):
                 x = x_next
         raise AssertionError("the monitor stops at max_iterations")
 
-    def interface_system(self, x, psi):
+    def interface_system(self, x):
         """The frozen-set system of the subdomains' Robin maps, or None where some
-        subdomain has none (its solves are then iterated)."""
+        subdomain has none (its solves are then iterated). The maps do not depend on the
+        contact set (hold_inactive): they are asked with an empty one."""
         if self.robin_maps is None:
             return None
-        maps = self.robin_maps(robin_data(self.layout, x, self.laws(psi)))
+        maps = self.robin_maps(robin_data(self.layout, x, self.laws(np.zeros_like(self.layout.gap))))
         if maps is None:
             return None
         sides = {name: self.problem.sides_of(name) for name in maps}

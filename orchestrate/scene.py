@@ -38,7 +38,7 @@ PROFILES = ("circle", "parabola")
 FACE_MESHES = ("shaped", "flat")
 SHAPES = ("block", "roller")
 METHODS = ("active-set", "paper")
-INNER_SOLVES = ("auto", "direct", "iterate")   # a frozen contact set's fixed point (robin.py)
+INNER_SOLVES = ("auto", "direct", "iterate", "two-level")   # a contact set's fixed point
 WORKERS = ("persistent", "fresh")
 DEFAULT_ROBIN = 2.0    # E/b
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
@@ -371,7 +371,9 @@ class Settings:
     method: str = "active-set"     # Robin loop: "active-set" (accelerated) or "paper"
     inner_solve: str = "auto"      # active-set loop, each contact set's fixed point:
                                    # "direct" from the subdomains' Robin maps, "iterate"
-                                   # (Anderson), "auto": direct where the maps cost less
+                                   # (Anderson), "two-level" (Anderson with a coarse
+                                   # correction, mesh levels >= 2), "auto": direct where
+                                   # the maps cost less, else two-level, else iterate
     robin: Optional[float] = None  # Robin parameter gamma, E/b; None: 1/theta (paper), 2
     rho: float = 0.5               # relaxation (24), in (0, 1]
     eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
@@ -391,6 +393,12 @@ class Settings:
         _require(not (self.method == "paper" and self.inner_solve == "direct"), "inner_solve",
                  "inner_solve = 'direct' needs method = 'active-set': the paper's loop "
                  "updates its contact set at every iteration and has no fixed point to solve")
+        _require(not (self.method == "paper" and self.inner_solve == "two-level"),
+                 "inner_solve", "inner_solve = 'two-level' needs method = 'active-set': "
+                 "the paper's loop is not accelerated")
+        _require(not (self.mesh_level == 1 and self.inner_solve == "two-level"), "inner_solve",
+                 "inner_solve = 'two-level' needs mesh_level >= 2: its coarse level is "
+                 "mesh level 1")
         _require(not (self.workers == "fresh" and self.inner_solve == "direct"), "inner_solve",
                  "inner_solve = 'direct' needs workers = 'persistent': a fresh process per "
                  "solve keeps no factorisation to probe the maps with")

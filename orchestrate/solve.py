@@ -33,6 +33,7 @@ import numpy as np
 import pandas as pd
 
 from . import answers, freefem
+from .coarse import coarse_correction
 from .contact import contact_half_width, contact_zones
 from .discretization import discretize
 from .errors import RunFailed  # noqa: F401  (raised here; callers import it from here too)
@@ -77,8 +78,10 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             checkpoint("setup")
             first_iterate = (state_from_run(start_from, StateLayout(problem.interfaces))
                              if start_from is not None else None)
+            coarse = (coarse_correction(problem) if two_levels(settings, subdomains)
+                      else None)
             loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate,
-                                  subdomains.robin_maps)
+                                  subdomains.robin_maps, coarse)
             if loop.converged:
                 reached = zone_end_reached(problem, loop.psi)
                 if reached is not None:
@@ -103,7 +106,8 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             "setup_time_s": setup_seconds,
             "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
             "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
-            "inner_solve_used": _inner_solve_used(loop.history),
+            "inner_solve_used": ("two-level" if coarse is not None
+                                 else _inner_solve_used(loop.history)),
             "started_from": (str(start_from) if first_iterate is not None
                              and settings.method != "paper" else None),
             "dofs": dofs,
@@ -136,6 +140,15 @@ def prepare(scene, settings):
     check_size(problem)
     return (scene.with_models([c.model for c in solved.coatings]), problem, model_choice,
             scales)
+
+
+def two_levels(settings, subdomains):
+    """Whether the loop iterates with a coarse correction (orchestrate/coarse.py): asked,
+    or by "auto" on a fine mesh whose contact sets are not solved directly."""
+    if settings.method == "paper" or settings.mesh_level == 1:
+        return False
+    return settings.inner_solve == "two-level" or (settings.inner_solve == "auto"
+                                                   and not subdomains.solves_directly)
 
 
 def _inner_solve_used(history):

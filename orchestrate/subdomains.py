@@ -196,12 +196,18 @@ class Subdomains:
         """Every subdomain's Robin map at the coefficients of ``data`` (robin.robin_data),
         asked now of the workers that have none; None unless every worker is to be
         mapped."""
-        if not (self.direct and all(self._to_map(entry) for entry in self.entries.values())):
+        if not self.solves_directly:
             return None
         requests = {name: request_arrays(self.sides[name], data) for name in self.entries}
         self._ask_maps(requests)
         maps = {name: entry.robin_map for name, entry in self.entries.items()}
         return maps if all(maps[name].serves(requests[name]) for name in maps) else None
+
+    @property
+    def solves_directly(self):
+        """Whether every worker gives its map, so the loop solves each contact set
+        directly."""
+        return self.direct and all(self._to_map(entry) for entry in self.entries.values())
 
     def _to_map(self, entry):
         return self.map_new or entry.scenes >= 2

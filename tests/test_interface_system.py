@@ -103,10 +103,12 @@ def test_a_direct_run_takes_one_iteration_per_contact_set(both_ways):
 def test_auto_solves_directly_where_the_maps_cost_less(tmp_path):
     """At the paper's mesh probing the maps costs fewer back-substitutions than the
     loop's iterations; at mesh level 2 the base's interface unknowns double and it no
-    longer does (Subdomains._maps_pay)."""
+    longer does (Subdomains._maps_pay): the loop iterates there, corrected on the coarse
+    mesh (tests/test_coarse.py)."""
     scene = paper_scene(h2=0.125, E2=5.0, model="shell")
     assert solve(scene, Settings(), str(tmp_path / "one"))["inner_solve_used"] == "direct"
-    assert solve(scene, Settings(mesh_level=2), str(tmp_path / "two"))["inner_solve_used"] == "iterate"
+    assert solve(scene, Settings(mesh_level=2),
+                 str(tmp_path / "two"))["inner_solve_used"] == "two-level"
 
 
 def test_a_force_load_is_solved_directly_through_the_maps_descent_row(tmp_path):

@@ -1,0 +1,120 @@
+"""The coarse-mesh correction of the Robin loop (orchestrate/coarse.py).
+
+Its transfers interpolate along the interfaces: exact for a state linear in s, and a
+coarse state brought to the fine mesh and back is itself (mesh level 2 halves every
+interface element, so the coarse points are fine points). On a fine mesh the corrected
+loop must give the plain loop's answer within the tolerance, in far fewer iterations,
+and leave none of its coarse workers behind.
+"""
+
+import os
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from orchestrate.coarse import _interpolation, coarse_correction
+from orchestrate.discretization import discretize
+from orchestrate.errors import ParameterError
+from orchestrate.scene import Settings
+from orchestrate.scene_file import SCENES_DIR, load_scene, paper_scene
+from orchestrate.solve import solve
+from orchestrate.state import StateLayout
+
+EPS_U = 1e-6
+
+
+def _layouts(scene, level):
+    fine = discretize(scene, Settings(mesh_level=level))
+    coarse = discretize(scene, Settings(mesh_level=1))
+    return StateLayout(fine.interfaces), StateLayout(coarse.interfaces)
+
+
+def _linear_state(layout):
+    """Every block of the state a different linear function of s."""
+    x = layout.zeros()
+    for k, ((_, i, _), where) in enumerate(layout.slices.items()):
+        s = layout.interfaces[i].s
+        x[where] = np.tile(0.3 + k * s, layout.interfaces[i].components)
+    return x
+
+
+def test_the_transfers_are_exact_for_linear_states_and_coarse_states_come_back():
+    fine, coarse = _layouts(paper_scene(h2=0.125, E2=5.0, model="elastic"), 2)
+    prolong, restrict = _interpolation(coarse, fine), _interpolation(fine, coarse)
+    assert np.allclose(prolong @ _linear_state(coarse), _linear_state(fine), atol=1e-12)
+    assert np.allclose(restrict @ _linear_state(fine), _linear_state(coarse), atol=1e-12)
+    assert np.allclose(restrict @ prolong, np.eye(coarse.size), atol=1e-12)
+
+
+def _freefem_children():
+    mine, found = str(os.getpid()), []
+    for pid in os.listdir("/proc"):
+        try:
+            with open(f"/proc/{pid}/stat") as stat:
+                parent = stat.read().rsplit(")", 1)[1].split()[1]
+            with open(f"/proc/{pid}/cmdline", "rb") as cmd:
+                command = cmd.read()
+        except OSError:
+            continue
+        if parent == mine and b"FreeFem" in command:
+            found.append(pid)
+    return found
+
+
+def test_the_coarse_workers_live_only_while_their_maps_are_probed():
+    problem = discretize(paper_scene(h2=0.125, E2=5.0, model="shell"),
+                         Settings(mesh_level=2))
+    before = _freefem_children()
+    correction = coarse_correction(problem)
+    assert correction is not None and _freefem_children() == before
+    assert correction.first_state().shape == (StateLayout(problem.interfaces).size,)
+
+
+@pytest.fixture(scope="module")
+def fine_runs(tmp_path_factory):
+    """The paper's scene (2D coating, b/8, 5E) at mesh level 2: by default (auto: the
+    maps do not pay there, so two levels) and plainly iterated."""
+    base = tmp_path_factory.mktemp("coarse")
+    scene = paper_scene(h2=0.125, E2=5.0, model="elastic")
+    runs = {}
+    for way in ("auto", "iterate"):
+        summary = solve(scene, Settings(mesh_level=2, eps_u=EPS_U, inner_solve=way),
+                        str(base / way))
+        runs[way] = summary, pd.read_csv(base / way / "contact.csv"), pd.read_csv(
+            base / way / "interface.csv")
+    return runs
+
+
+def _relative_l2(a, b):
+    return float(np.linalg.norm(a - b) / np.linalg.norm(b))
+
+
+def test_two_levels_give_the_plain_loops_answer_in_less_than_half_its_iterations(fine_runs):
+    (two, contact, bond), (plain, contact_p, bond_p) = fine_runs["auto"], fine_runs["iterate"]
+    assert two["inner_solve_used"] == "two-level" and plain["inner_solve_used"] == "iterate"
+    assert two["converged"] and two["error_estimate"] < EPS_U
+    assert _relative_l2(contact.sigma_n, contact_p.sigma_n) < 2 * EPS_U
+    for component in ("sigma_n", "sigma_t"):
+        assert _relative_l2(bond[component], bond_p[component]) < 2 * EPS_U
+    assert two["iterations"] < plain["iterations"] / 2      # measured 59 against 131
+
+
+def test_two_levels_carry_a_force_load(tmp_path):
+    """A force: the coarse contact problem starts from the points touched first."""
+    scene, values = load_scene(SCENES_DIR / "cylinder.toml")
+    assert scene.load.force is not None
+    runs = {way: solve(scene, Settings(**{**values, "mesh_level": 2, "inner_solve": way}),
+                       str(tmp_path / way)) for way in ("two-level", "iterate")}
+    assert runs["two-level"]["descent"] == pytest.approx(runs["iterate"]["descent"],
+                                                         rel=2 * EPS_U)
+    assert runs["two-level"]["iterations"] < runs["iterate"]["iterations"] / 2
+
+
+@pytest.mark.parametrize("settings, message", [
+    (dict(method="paper", inner_solve="two-level", mesh_level=2), "method = 'active-set'"),
+    (dict(inner_solve="two-level"), "mesh_level >= 2"),
+])
+def test_two_levels_the_settings_cannot_give_are_refused(settings, message):
+    with pytest.raises(ParameterError, match=message):
+        Settings(**settings)
