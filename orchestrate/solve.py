@@ -33,7 +33,7 @@ import numpy as np
 import pandas as pd
 
 from . import answers, freefem
-from .coarse import coarse_correction
+from .coarse import CoarseLevel
 from .contact import contact_half_width, contact_zones
 from .discretization import discretize
 from .errors import RunFailed  # noqa: F401  (raised here; callers import it from here too)
@@ -70,7 +70,9 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     scene, problem, model_choice, scales = prepare(scene, settings)
     start = time.perf_counter()
     with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
-          contextlib.nullcontext(session) if session is not None else Session() as workers):
+          contextlib.nullcontext(session) if session is not None else Session() as workers,
+          CoarseLevel(problem) if may_use_two_levels(settings)      # probes meanwhile
+          else contextlib.nullcontext() as coarse_level):
         scratch = str(folder.scratch)
         files = write_inputs(problem, workdir)
         with start_subdomains(problem, settings, files, workers, scratch) as subdomains:
@@ -78,8 +80,11 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             checkpoint("setup")
             first_iterate = (state_from_run(start_from, StateLayout(problem.interfaces))
                              if start_from is not None else None)
-            coarse = (coarse_correction(problem) if two_levels(settings, subdomains)
+            coarse = (coarse_level.correction()
+                      if coarse_level is not None and two_levels(settings, subdomains)
                       else None)
+            if coarse_level is not None:
+                coarse_level.close()
             loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate,
                                   subdomains.robin_maps, coarse)
             if loop.converged:
@@ -142,13 +147,18 @@ def prepare(scene, settings):
             scales)
 
 
+def may_use_two_levels(settings):
+    """Whether a run may iterate with a coarse correction (orchestrate/coarse.py): its
+    coarse level then starts with the run, before the decision (two_levels)."""
+    return (settings.method != "paper" and settings.mesh_level > 1
+            and settings.inner_solve in ("auto", "two-level"))
+
+
 def two_levels(settings, subdomains):
-    """Whether the loop iterates with a coarse correction (orchestrate/coarse.py): asked,
-    or by "auto" on a fine mesh whose contact sets are not solved directly."""
-    if settings.method == "paper" or settings.mesh_level == 1:
-        return False
-    return settings.inner_solve == "two-level" or (settings.inner_solve == "auto"
-                                                   and not subdomains.solves_directly)
+    """Whether the loop iterates with a coarse correction: asked, or by "auto" on a fine
+    mesh whose contact sets are not solved directly."""
+    return may_use_two_levels(settings) and (settings.inner_solve == "two-level"
+                                             or not subdomains.solves_directly)
 
 
 def _inner_solve_used(history):

@@ -128,6 +128,7 @@ class Subdomains:
                                    for i, _ in self.sides[name]) for name in problem.subdomains}
         self.entries = {}
         self.last_requests, self.mapped = {}, {}
+        self._pending = {}           # map requests sent and not yet answered, by name
         self.dofs = self._start()
         self.direct = use_maps and inner_solve != "iterate"
         self.map_new = self.direct and (inner_solve == "direct" or self._maps_pay())
@@ -198,10 +199,19 @@ class Subdomains:
         mapped."""
         if not self.solves_directly:
             return None
-        requests = {name: request_arrays(self.sides[name], data) for name in self.entries}
+        requests = self._requests(data)
         self._ask_maps(requests)
         maps = {name: entry.robin_map for name, entry in self.entries.items()}
         return maps if all(maps[name].serves(requests[name]) for name in maps) else None
+
+    def request_maps(self, data):
+        """Ask for the maps ``robin_maps(data)`` returns, and return at once: the workers
+        probe while the caller works."""
+        if self.solves_directly:
+            self._send_map_requests(self._requests(data))
+
+    def _requests(self, data):
+        return {name: request_arrays(self.sides[name], data) for name in self.entries}
 
     @property
     def solves_directly(self):
@@ -217,13 +227,24 @@ class Subdomains:
         ``map_new``), all asked at once."""
         if not self.use_maps:
             return
-        wanted = [name for name, entry in self.entries.items()
-                  if entry.robin_map is None and self._to_map(entry)]
-        for name in wanted:
-            send_map_request(self.entries[name].worker, requests[name])
-        for name in wanted:
+        self._send_map_requests(requests)
+        for name in list(self._pending):
             entry = self.entries[name]
-            entry.robin_map = receive_map(entry.worker, requests[name], self.components[name])
+            entry.robin_map = receive_map(entry.worker, self._pending.pop(name),
+                                          self.components[name])
+
+    def _send_map_requests(self, requests):
+        for name, entry in self.entries.items():
+            if entry.robin_map is None and name not in self._pending and self._to_map(entry):
+                send_map_request(entry.worker, requests[name])
+                self._pending[name] = requests[name]
+
+    def kill_probing(self):
+        """Kill the workers still probing a map nobody will read (they would not hear a
+        request to stop until their answer was read)."""
+        for name in self._pending:
+            self.entries[name].worker.kill()
+        self._pending = {}
 
     def write_outputs(self):
         """Ask every worker to write its fields (CSV) and reactions next to its output
@@ -250,6 +271,7 @@ class Subdomains:
 
     def _drop(self):
         """Stop this run's workers (a failed run leaves none to the next)."""
+        self.kill_probing()
         for name in list(self.entries):
             self.session.drop(self.keys[name])
         self.entries = {}

@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.coarse import _interpolation, coarse_correction
+from orchestrate.coarse import CoarseLevel, _interpolation
 from orchestrate.discretization import discretize
 from orchestrate.errors import ParameterError
 from orchestrate.scene import Settings
@@ -66,9 +66,22 @@ def test_the_coarse_workers_live_only_while_their_maps_are_probed():
     problem = discretize(paper_scene(h2=0.125, E2=5.0, model="shell"),
                          Settings(mesh_level=2))
     before = _freefem_children()
-    correction = coarse_correction(problem)
-    assert correction is not None and _freefem_children() == before
+    with CoarseLevel(problem) as level:
+        assert len(_freefem_children()) == len(before) + 3     # probing meanwhile
+        correction = level.correction()
+        assert correction is not None and _freefem_children() == before
     assert correction.first_state().shape == (StateLayout(problem.interfaces).size,)
+
+
+def test_a_coarse_level_left_unused_stops_its_probing_workers_at_once():
+    """A run that solves directly after all closes its coarse level while the workers
+    probe: they are killed (a probing worker would not hear a request to stop)."""
+    problem = discretize(paper_scene(h2=0.125, E2=5.0, model="elastic"),
+                         Settings(mesh_level=2))
+    before = _freefem_children()
+    with CoarseLevel(problem):
+        assert len(_freefem_children()) == len(before) + 3
+    assert _freefem_children() == before
 
 
 @pytest.fixture(scope="module")
