@@ -20,19 +20,18 @@ import dataclasses
 import os
 import tempfile
 import time
-from pathlib import Path
 
 import pandas as pd
 
+from .bench_session import SWEEP, one_by_one
 from .monolithic import monolithic_solution
 from .paths import RESULTS_DIR
 from .scene import Settings
 from .scene_file import SCENES_DIR, load_scene, paper_scene
 from .session import Session
 from .solve import solve
-from .sweep import load_sweep, named_points, point_scene
+from .sweep import load_sweep, named_points
 
-FIGURE_SWEEP = Path(__file__).parent / "sweeps" / "figures.toml"
 LEVELS = (1, 2, 3)
 WAYS = ("iterate", "direct", "two-level")
 
@@ -77,20 +76,12 @@ def both_ways(out):
     return pd.DataFrame(rows)
 
 
-def figure_scenes(out, level):
+def figure_scenes(level):
     """A row per figure scene, solved one after the other in one Session at ``level``."""
-    rows = []
+    points = [(name, {**values, "mesh_level": level})
+              for name, values in named_points(load_sweep(SWEEP)[1])]
     with Session() as session:
-        for name, values in named_points(load_sweep(FIGURE_SWEEP)[1]):
-            scene, settings = point_scene(values, FIGURE_SWEEP.parent)
-            settings = dataclasses.replace(settings, mesh_level=level)
-            summary = solve(scene, settings, os.path.join(out, f"L{level}-{name}"),
-                            session=session)
-            rows.append({"mesh_level": level, "scene": name,
-                         "iterations": summary["iterations"],
-                         "inner_solve_used": summary["inner_solve_used"],
-                         "wall_s": summary["wall_time_s"]})
-    return pd.DataFrame(rows)
+        return one_by_one(points, session).assign(mesh_level=level)
 
 
 def main(argv=None):
@@ -99,7 +90,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory() as out:
         table = both_ways(out)
-        figures = pd.concat([figure_scenes(out, level) for level in (1, 3)], ignore_index=True)
+        figures = pd.concat([figure_scenes(level) for level in (1, 3)], ignore_index=True)
     with pd.option_context("display.width", 220):
         print(table.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
     counts = figures.groupby("mesh_level").agg(

@@ -39,6 +39,7 @@ def one_by_one(points, session):
                          "setup_s": summary["setup_time_s"],
                          "loop_s": summary["time_per_iteration_s"] * summary["iterations"],
                          "iterations": summary["iterations"],
+                         "inner_solve_used": summary["inner_solve_used"],
                          "kept": len(summary["workers_kept"]),
                          "peak_contact_stress": summary["peak_contact_stress"],
                          "peak_interface_stress": summary["peak_interface_stress"]})

@@ -26,11 +26,10 @@ import dataclasses
 
 import numpy as np
 
-from .contact import penetration, updated_active_set
 from .discretization import discretize
 from .folders import WorkFolder
 from .interface_system import InterfaceSystem
-from .robin import contact_traction, first_contact_set, robin_data, robin_laws
+from .robin import first_contact_set, robin_data, robin_laws, updated_contact_set
 from .session import Session
 from .state import StateLayout
 from .subdomains import Subdomains, write_inputs
@@ -128,9 +127,7 @@ class CoarseCorrection:
         psi, x = first_contact_set(self.coarse.scene, layout, layout.zeros(), True), None
         for _ in range(COARSE_NEWTON_STEPS):
             x, _ = self.system.fixed_point(self.laws(psi))
-            new_psi = updated_active_set(psi, penetration(layout.gap, layout.contact(x, "u", 0),
-                                                          layout.contact(x, "u", 1)),
-                                         contact_traction(layout, x))
+            new_psi = updated_contact_set(layout, psi, x)
             if np.array_equal(new_psi, psi):
                 break
             psi = new_psi

@@ -136,6 +136,17 @@ def contact_traction(layout, x):
     return 0.5 * (layout.contact(x, "t", 0) + layout.contact(x, "t", 1))
 
 
+def state_penetration(layout, x):
+    """d - u_A - u_B at every contact point of the state x (negative: interpenetration)."""
+    return penetration(layout.gap, layout.contact(x, "u", 0), layout.contact(x, "u", 1))
+
+
+def updated_contact_set(layout, psi, x):
+    """The semi-smooth Newton update of Psi from the state x solved with it
+    (contact.updated_active_set)."""
+    return updated_active_set(psi, state_penetration(layout, x), contact_traction(layout, x))
+
+
 # Inner tolerance of the active-set loop while Psi may still change: enough for the
 # tractions to tell tension from compression at most points. Measured on the figure
 # scenes (total iterations of 8 runs): 1e-4: 760, 3e-3: 512, 1e-2: 449, 3e-2: 428 with one
@@ -285,10 +296,6 @@ class _Loop:
         self.seconds = seconds
         return state_after_solve(self.layout, data, traces)
 
-    def penetration(self, x):
-        return penetration(self.layout.gap, self.layout.contact(x, "u", 0),
-                           self.layout.contact(x, "u", 1))
-
     def record(self, image, psi, previous_psi, change, update, status=None):
         layout = self.layout
         traction = layout.contact(image, "t", 0) + layout.contact(image, "t", 1)
@@ -390,7 +397,7 @@ class _PaperLoop(_Loop):
         history = Anderson(scale, memory=self.AMPLIFICATION_WINDOW, parts=layout.parts)
         x, previous_psi, changes = layout.zeros(), None, []
         for iteration in range(1, self.settings.max_iterations + 1):
-            psi = (self.penetration(x) < 0).astype(float)
+            psi = (state_penetration(self.layout, x) < 0).astype(float)
             image = self.iterate(x, psi)
             history.record(x, image)
             x_new = rho * image + (1.0 - rho) * x
@@ -427,8 +434,7 @@ def first_contact_set(scene, layout, x, supported=False):
     ``supported``, at least the points the indenter touches first (without a support
     the problem of a force is singular, and so is the whole interface system of a body
     held only by its contact: interface_system.py)."""
-    psi = (penetration(layout.gap, layout.contact(x, "u", 0), layout.contact(x, "u", 1))
-           < 0).astype(float)
+    psi = (state_penetration(layout, x) < 0).astype(float)
     if (scene.load.force is not None or supported) and not psi.any():
         psi = (layout.gap <= np.min(layout.gap) + 1e-12 * np.max(layout.gap)).astype(float)
     return psi
@@ -488,8 +494,7 @@ class _ActiveSetLoop(_Loop):
             image = self.iterate(x, psi)
             change = self.relative_change(image, x)
             failure = self.monitor.check(iteration, image, max(change[:2]))
-            new_psi = updated_active_set(psi, self.penetration(image),
-                                         contact_traction(layout, image))
+            new_psi = updated_contact_set(layout, psi, image)
             psi_settled = np.array_equal(new_psi, psi)
             if system is not None:
                 # image is x up to rounding; the refinement step sizes the rounding
@@ -534,7 +539,8 @@ class _ActiveSetLoop(_Loop):
         contact set (hold_inactive): they are asked with an empty one."""
         if self.robin_maps is None:
             return None
-        maps = self.robin_maps(robin_data(self.layout, x, self.laws(np.zeros_like(self.layout.gap))))
+        empty = np.zeros_like(self.layout.gap)
+        maps = self.robin_maps(robin_data(self.layout, x, self.laws(empty)))
         if maps is None:
             return None
         sides = {name: self.problem.sides_of(name) for name in maps}
