@@ -50,6 +50,9 @@ CASES = {
     "paper, shell, paper loop, theta 1": (
         paper_scene(), Settings(method="paper", theta=1.0, eps_u=1e-10, max_iterations=2000)),
     "paper, 2D coating, h2 b/8": (paper_scene(model="elastic"), TIGHT),
+    "paper, 2D coating, two levels, mesh level 2": (
+        paper_scene(model="elastic"), Settings(eps_u=1e-10, mesh_level=2,
+                                               inner_solve="two-level")),
     "paper, 2D coating, h2 b/2, E2 5E": (paper_scene(model="elastic", h2=0.5, E2=5.0), TIGHT),
     "paper under a force": (paper_scene(force=7.7e-4), TIGHT),
     "cylinder on a coated block": (_file("cylinder"), TIGHT),
