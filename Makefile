@@ -19,9 +19,11 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 .DELETE_ON_ERROR:
 
 # ---- The paper's figures: every scene listed once, in a sweep file ---------------------
-# The sweep runs each scene once into results/figures/runs/ (runs.csv is written last; a
-# rerun skips finished runs); each figure takes the runs it needs. An edited form or
-# solver source makes the runs stale: they are removed and solved again.
+# One process runs the sweep of the figures' scenes into results/figures/runs/ (runs.csv
+# is written last; a rerun skips finished runs), then draws the three figures, each
+# taking the runs it needs. A form or solver source edited since runs.csv was written
+# makes the runs stale: they are removed and solved again (so are the runs of a sweep
+# that never wrote its table: nothing says which code solved them).
 FIGURE_SWEEP := orchestrate/sweeps/figures.toml
 FIGURE_RUNS := results/figures/runs.csv
 SOLVER_SOURCES := $(wildcard freefem/*.idp freefem/*.edp) \
@@ -32,12 +34,10 @@ FIGURES := results/fig3.png results/fig4.png results/fig5.png
 figures: fig3 fig4 fig5
 fig3 fig4 fig5: $(FIGURES) ; @:
 
-$(FIGURE_RUNS): $(FIGURE_SWEEP) $(SOLVER_SOURCES) | setup
-	$(if $(filter-out $(FIGURE_SWEEP),$?),rm -rf results/figures/runs)
-	$(PYTHON) -m orchestrate sweep $(FIGURE_SWEEP)
-# One process draws the three (each figure alone would import matplotlib again).
-$(FIGURES) &: $(FIGURE_RUNS) orchestrate/figures.py | setup
-	$(PYTHON) -m orchestrate.figures all results/figures
+$(FIGURE_RUNS) $(FIGURES) &: $(FIGURE_SWEEP) $(SOLVER_SOURCES) orchestrate/figures.py | setup
+	@if [ ! -f $(FIGURE_RUNS) ] || [ -n "$$(find $(SOLVER_SOURCES) -newer $(FIGURE_RUNS))" ]; \
+	  then rm -rf results/figures/runs; fi
+	$(PYTHON) -m orchestrate figures
 
 # ---- A discrete coating (orchestrate/scenes/discrete.toml), both coating models ------
 DISCRETE_RUNS := $(foreach m,shell elastic,results/discrete/$(m)/summary.json)

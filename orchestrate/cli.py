@@ -133,6 +133,13 @@ def build_parser():
     sweep.add_argument("--retry-failed", action="store_true",
                        help="run again the runs that did not converge (those that failed "
                             "outside their numbers, e.g. a killed worker, always are)")
+    figures = commands.add_parser(
+        "figures", help="the paper's figures 3, 4 and 5 (what `make fig3 fig4 fig5` runs)",
+        description="Run the sweep of the figures' scenes (orchestrate/sweeps/figures.toml; "
+                    "finished runs are skipped) into results/figures/, then draw "
+                    "results/fig3-5 (png, pdf, _data.csv), all in one process.",
+        epilog="exit status: as `sweep`'s; the figures are drawn only if every run converged")
+    figures.add_argument("--jobs", type=int, help="runs at once (default: one per core)")
     plot = commands.add_parser("plot", help="plot the stresses of a finished run",
                                description="Write RUN/stresses.png from RUN's CSV files.")
     plot.add_argument("run", help="a folder written by `solve`")
@@ -191,6 +198,19 @@ def _say(text):
         pass
 
 
+def _figures(args):
+    from .paths import FIGURE_SWEEP, RESULTS_DIR
+    runs = RESULTS_DIR / "figures"
+    status = _sweep(argparse.Namespace(file=FIGURE_SWEEP, out=runs, engine="local",
+                                       jobs=args.jobs, scheduler=None, retry_failed=False))
+    if status != EXIT_CONVERGED:
+        return status
+    from .figures import draw                # matplotlib, once the runs are done
+    for path in draw(["fig3", "fig4", "fig5"], [runs], RESULTS_DIR):
+        _say(path)
+    return EXIT_CONVERGED
+
+
 def _sweep(args):
     from .sweep import run_sweep
     try:
@@ -225,6 +245,8 @@ def main(argv=None):
             return _plot_sweep(args)
         if args.command == "sweep":
             return _sweep(args)
+        if args.command == "figures":
+            return _figures(args)
         return _solve(args)
     except KeyboardInterrupt as error:
         return _interrupted(error)

@@ -32,14 +32,13 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
 from .outputs import written  # noqa: E402
-from .paths import PACKAGE_DIR, RESULTS_DIR  # noqa: E402
+from .paths import FIGURE_SWEEP, RESULTS_DIR  # noqa: E402
 from .scene import scene_from_dict  # noqa: E402
 from .scene_file import shorthand_values  # noqa: E402
 from .sweep import load_sweep  # noqa: E402
 
 # Every scene the three figures need, (model, h2, E2), listed once: the sweep file that
 # `make fig3 fig4 fig5` runs (its runs land in results/figures/runs/).
-FIGURE_SWEEP = PACKAGE_DIR / "sweeps" / "figures.toml"
 FIGURE_SCENES = sorted({(point["model"], point["h2"], point["E2"])
                         for point in load_sweep(FIGURE_SWEEP)[1]})
 FIGURE_HEIGHTS = tuple(sorted({h2 for _, h2, _ in FIGURE_SCENES}, reverse=True))
@@ -236,6 +235,22 @@ def fig5(runs, out_dir):
 FIGURES = {"fig3": fig3, "fig4": fig4, "fig5": fig5}
 
 
+def draw(names, folders, out_dir):
+    """Draw the figures ``names`` from the run folders (or sweep folders) ``folders`` into
+    ``out_dir``; return the PNG paths."""
+    runs = load_runs(folders)
+    with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork")) as pool:
+        # fig. 5 takes as long as the other two: drawn on a second core, forked
+        aside = {name: pool.submit(FIGURES[name], runs, out_dir)
+                 for name in names if name == "fig5" and len(names) > 1}
+        for name in names:
+            if name in aside:
+                aside[name].result()
+            else:
+                FIGURES[name](runs, out_dir)
+    return [os.path.join(out_dir, f"{name}.png") for name in names]
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description="Draw one of the paper's figures, or all.")
     parser.add_argument("figure", choices=sorted(FIGURES) + ["all"])
@@ -243,18 +258,10 @@ def main(argv=None):
                         help="run folders (or their summary.json), or a sweep's folder")
     parser.add_argument("--out", default=str(RESULTS_DIR))
     args = parser.parse_args(argv)
-    runs = load_runs(args.runs)
     names = sorted(FIGURES) if args.figure == "all" else [args.figure]
-    with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork")) as pool:
-        # fig. 5 takes as long as the other two: drawn on a second core, forked
-        aside = {name: pool.submit(FIGURES[name], runs, args.out)
-                 for name in names if name == "fig5" and len(names) > 1}
-        for name in names:
-            if name in aside:
-                aside[name].result()
-            else:
-                FIGURES[name](runs, args.out)
-            print(os.path.join(args.out, f"{name}.png"))
+    for path in draw(names, args.runs, args.out):
+        print(path)
+
 
 if __name__ == "__main__":
     main()

@@ -11,7 +11,11 @@ per unit distance from there, up to a maximum. A mirror-symmetric body is meshed
 x1 >= 0 and mirrored, so that its mesh is mirror-symmetric too.
 """
 
+from collections import OrderedDict
 from contextlib import contextmanager
+import copy
+import dataclasses
+import hashlib
 import math
 from pathlib import Path
 import signal
@@ -68,11 +72,53 @@ def coating_mesh(plan):
 
 # ---- bodies -----------------------------------------------------------------------------
 
+# A sweep meshes the same bodies scene after scene (the base of every figure scene, the
+# indenter of every scene with the same h2): gmsh's meshes, and the medit text of what was
+# written, are kept by content for the process's life, the last few of each.
+_KEPT = 8
+_body_meshes = OrderedDict()        # plan digest -> mesh
+_medit_texts = OrderedDict()        # mesh digest -> the text write_medit wrote
+
+
 def body_mesh(plan):
     """Triangle mesh of a body from its plan (an indenter, a block or a roller)."""
-    if plan.mirror:
-        return _mirrored(_gmsh_body(plan))
-    return _gmsh_body(plan)
+    key = _digest(plan)
+    mesh = _body_meshes.get(key)
+    if mesh is None:
+        mesh = _mirrored(_gmsh_body(plan)) if plan.mirror else _gmsh_body(plan)
+        _keep(_body_meshes, key, mesh)
+    _body_meshes.move_to_end(key)
+    return copy.deepcopy(mesh)
+
+
+def _keep(cache, key, value):
+    cache[key] = value
+    while len(cache) > _KEPT:
+        cache.popitem(last=False)
+
+
+def _digest(value, digest=None):
+    """A digest of every number, string and array of a plan (dataclasses, tuples, arrays,
+    numbers), with their types: two plans with equal digests mesh alike."""
+    top = digest is None
+    digest = hashlib.sha256() if top else digest
+    digest.update(type(value).__name__.encode())
+    if dataclasses.is_dataclass(value):
+        for field in dataclasses.fields(value):
+            digest.update(field.name.encode())
+            _digest(getattr(value, field.name), digest)
+    elif isinstance(value, (tuple, list)):
+        digest.update(str(len(value)).encode())
+        for item in value:
+            _digest(item, digest)
+    elif isinstance(value, np.ndarray):
+        digest.update(str(value.shape).encode() + str(value.dtype).encode())
+        digest.update(np.ascontiguousarray(value).tobytes())
+    elif value is None or isinstance(value, (bool, int, float, str)):
+        digest.update(repr(value).encode())
+    else:
+        raise TypeError(f"cannot digest a {type(value).__name__} of a mesh plan")
+    return digest.hexdigest() if top else digest
 
 
 class _Outline:
@@ -377,4 +423,13 @@ def _counterclockwise(points, triangles):
 
 def write_medit(mesh, path):
     """Write a mesh in medit ``.mesh`` format, which FreeFEM's ``readmesh`` reads."""
-    meshio.write(Path(path), mesh, file_format="medit")
+    refs = mesh.cell_data.get("medit:ref", [None] * len(mesh.cells))
+    key = _digest((mesh.points, tuple((block.type, block.data, ref)
+                                      for block, ref in zip(mesh.cells, refs))))
+    text = _medit_texts.get(key)
+    if text is None:
+        meshio.write(Path(path), mesh, file_format="medit")
+        _keep(_medit_texts, key, Path(path).read_bytes())
+    else:
+        Path(path).write_bytes(text)
+        _medit_texts.move_to_end(key)

@@ -1,6 +1,8 @@
 """Meshes: the paper's size, the interface nodes exactly on every interface face (flat,
 curved, mirrored), labels that survive the medit round trip FreeFEM reads."""
 
+import dataclasses
+
 import meshio
 import numpy as np
 import pytest
@@ -115,3 +117,26 @@ def test_a_roller_and_its_2d_coating_meet_at_the_interface_nodes():
     top = _edges_with_label(coating, LABELS["Contact"])
     np.testing.assert_allclose(np.linalg.norm(coating.points[top], axis=-1),
                                radius + scene.coatings[0].thickness, rtol=1e-14)
+
+
+def test_a_body_is_meshed_once_per_plan(tmp_path, monkeypatch):
+    """A sweep meshes its kept bodies again scene after scene: the second time the mesh
+    (and the medit text) come from the cache, equal to the first; a copy the caller
+    changes leaves the cache alone; another plan is meshed anew."""
+    from orchestrate import mesh as meshing
+    base = discretize(paper_scene(), Settings()).subdomains["base"].plan
+    first = body_mesh(base)
+    write_medit(first, tmp_path / "first.mesh")
+    calls = []
+    monkeypatch.setattr(meshing, "_gmsh_body", lambda plan: calls.append(plan) or first)
+    monkeypatch.setattr(meshing.meshio, "write", lambda *a, **k: calls.append(a))
+    again = body_mesh(discretize(paper_scene(), Settings()).subdomains["base"].plan)
+    write_medit(again, tmp_path / "again.mesh")
+    assert calls == []
+    np.testing.assert_array_equal(again.points, first.points)
+    assert (tmp_path / "again.mesh").read_bytes() == (tmp_path / "first.mesh").read_bytes()
+    again.points[:] = 0.0
+    np.testing.assert_array_equal(body_mesh(base).points, first.points)
+    other = dataclasses.replace(base, max_size=0.99 * base.max_size)   # no test meshed it
+    body_mesh(other)
+    assert calls == [other]

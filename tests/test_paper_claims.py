@@ -14,6 +14,7 @@ import pytest
 
 from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
 from orchestrate.figures import FIGURE_HEIGHTS, FIGURE_SCENES
+from orchestrate.paths import FIGURE_SWEEP
 from orchestrate.scene import Settings
 from orchestrate.scene_file import paper_scene
 from orchestrate.solve import solve
@@ -37,12 +38,13 @@ def runs(tmp_path_factory):
 
 
 def test_make_draws_the_figures_from_the_one_list_of_scenes():
-    """`make fig3` runs the figure sweep (the only list of the figure scenes) and draws
-    from its folder; that list has the 24 scenes of figs. 3-5."""
+    """`make fig3` runs `python -m orchestrate figures`: the figure sweep (the only list of
+    the figure scenes, which orchestrate/figures.py reads too) into results/figures/, then
+    the drawing; that list has the 24 scenes of figs. 3-5."""
     make = subprocess.run(["make", "-n", "-B", "fig3"], cwd=PROJECT_DIR, capture_output=True,
                           text=True).stdout
-    assert "-m orchestrate sweep orchestrate/sweeps/figures.toml" in make
-    assert "-m orchestrate.figures all results/figures" in make
+    assert "-m orchestrate figures" in make
+    assert FIGURE_SWEEP == PROJECT_DIR / "orchestrate" / "sweeps" / "figures.toml"
     assert len(FIGURE_SCENES) == 24
     assert {(m, E2) for m, _, E2 in FIGURE_SCENES} == {
         ("shell", 5.0), ("shell", 1.0), ("elastic", 5.0), ("elastic", 1.0), ("elastic", 0.2)}
