@@ -12,8 +12,10 @@ terminated (SIGTERM).
 
 import argparse
 from dataclasses import fields
+import importlib
 import signal
 import sys
+import threading
 import tomllib
 import traceback
 
@@ -201,11 +203,17 @@ def _say(text):
 def _figures(args):
     from .paths import FIGURE_SWEEP, RESULTS_DIR
     runs = RESULTS_DIR / "figures"
-    status = _sweep(argparse.Namespace(file=FIGURE_SWEEP, out=runs, engine="local",
-                                       jobs=args.jobs, scheduler=None, retry_failed=False))
+    # matplotlib is imported while the runs run: this process only waits for them
+    drawing = threading.Thread(target=importlib.import_module, args=("orchestrate.figures",))
+    drawing.start()
+    try:
+        status = _sweep(argparse.Namespace(file=FIGURE_SWEEP, out=runs, engine="local",
+                                           jobs=args.jobs, scheduler=None, retry_failed=False))
+    finally:
+        drawing.join()
     if status != EXIT_CONVERGED:
         return status
-    from .figures import draw                # matplotlib, once the runs are done
+    from .figures import draw
     for path in draw(["fig3", "fig4", "fig5"], [runs], RESULTS_DIR):
         _say(path)
     return EXIT_CONVERGED

@@ -16,9 +16,14 @@ from .answers import fibre_stresses
 from .errors import SystemFailure, system_failure
 
 
-def _atomic(path):
+def partial_path(path):
+    """Where ``written`` writes ``path`` before the rename."""
     path = Path(path)
-    return path, path.with_name(f".{path.name}.partial")
+    return path.with_name(f".{path.name}.partial")
+
+
+def _atomic(path):
+    return Path(path), partial_path(path)
 
 
 def written(path, write):

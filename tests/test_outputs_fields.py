@@ -260,3 +260,14 @@ def test_figures_3_to_5_draw_from_a_run(run, tmp_path):
     for name in ("fig3", "fig4", "fig5"):
         figures.FIGURES[name](runs, str(tmp_path))
         assert (tmp_path / f"{name}.png").stat().st_size > 10_000
+        assert (tmp_path / f"{name}.pdf").read_bytes().rstrip().endswith(b"%%EOF")
+        assert (tmp_path / f"{name}_data.csv").is_file()
+    assert not list(tmp_path.glob("*partial*"))
+
+
+def test_a_file_drawn_aside_reports_its_failure(capfd):
+    """fig. 5's PDF is drawn in a forked process: its failure fails the drawing."""
+    wait = figures._forked(lambda: 1 / 0)
+    with pytest.raises(RuntimeError, match="forked process failed"):
+        wait()
+    assert "ZeroDivisionError" in capfd.readouterr().err
