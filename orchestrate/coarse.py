@@ -71,10 +71,9 @@ class CoarseLevel:
 
     def _data(self):
         """The Robin data of an empty contact set: the maps' coefficients."""
-        coarse, layout = self.coarse, self.layout
-        laws = robin_laws(coarse, layout, np.zeros(layout.gap.size), coarse.penalty,
-                          coarse.robin, True)
-        return robin_data(layout, layout.zeros(), laws)
+        layout = self.layout
+        return robin_data(layout, layout.zeros(),
+                          _coarse_laws(self.coarse, layout, np.zeros(layout.gap.size)))
 
     def correction(self):
         """The CoarseCorrection from the probed maps (None unless ``paired``); the coarse
@@ -103,6 +102,12 @@ class CoarseLevel:
         self.close()
 
 
+def _coarse_laws(coarse, layout, psi):
+    """The coarse problem's Robin laws for the contact set psi, inactive points held (the
+    fine active-set loop's)."""
+    return robin_laws(coarse, layout, psi, coarse.penalty, coarse.robin, hold_inactive=True)
+
+
 def _pair_up(fine, coarse):
     return (len(fine) == len(coarse)
             and all(f.name == c.name and f.kind == c.kind for f, c in zip(fine, coarse))
@@ -118,8 +123,7 @@ class CoarseCorrection:
         self._psi = None
 
     def laws(self, psi):
-        coarse = self.coarse
-        return robin_laws(coarse, self.coarse_layout, psi, coarse.penalty, coarse.robin, True)
+        return _coarse_laws(self.coarse, self.coarse_layout, psi)
 
     def first_state(self):
         """The fine state interpolated from the coarse contact problem's solution."""

@@ -107,18 +107,19 @@ def _save(figure, name, data, out_dir, pdf_aside=False):
     if figure.get_layout_engine() is not None:
         figure.canvas.draw()
         figure.set_layout_engine("none")
-    path = os.path.join(out_dir, name)
-    pdf = (_forked(lambda: _save_as(figure, path + ".pdf", "pdf")) if pdf_aside
-           else _save_as(figure, path + ".pdf", "pdf"))
-    try:
-        _save_as(figure, path + ".png", "png")
-    except BaseException:
-        if pdf_aside:
-            pdf()                              # killed: what it was writing goes too
-            partial_path(path + ".pdf").unlink(missing_ok=True)
-        raise
-    if pdf_aside:
-        pdf()
+    png, pdf = (os.path.join(out_dir, f"{name}.{extension}") for extension in ("png", "pdf"))
+    if not pdf_aside:
+        _save_as(figure, png, "png")
+        _save_as(figure, pdf, "pdf")
+    else:
+        wait = _forked(lambda: _save_as(figure, pdf, "pdf"))
+        try:
+            _save_as(figure, png, "png")
+        except BaseException:
+            wait()                             # killed: what it was writing goes too
+            partial_path(pdf).unlink(missing_ok=True)
+            raise
+        wait()
     plt.close(figure)
     path = os.path.join(out_dir, f"{name}_data.csv")
     written(path, lambda partial: data.to_csv(partial, index=False))

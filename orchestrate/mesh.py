@@ -73,28 +73,38 @@ def coating_mesh(plan):
 # ---- bodies -----------------------------------------------------------------------------
 
 # A sweep meshes the same bodies scene after scene (the base of every figure scene, the
-# indenter of every scene with the same h2): gmsh's meshes, and the medit text of what was
-# written, are kept by content for the process's life, the last few of each.
+# indenter of every scene with the same h2): gmsh's meshes, and the medit text each was
+# written as, are kept by plan for the process's life, the last few.
 _KEPT = 8
-_body_meshes = OrderedDict()        # plan digest -> mesh
-_medit_texts = OrderedDict()        # mesh digest -> the text write_medit wrote
+_body_meshes = OrderedDict()        # plan digest -> [mesh, its medit text or None]
 
 
 def body_mesh(plan):
     """Triangle mesh of a body from its plan (an indenter, a block or a roller)."""
+    return copy.deepcopy(_kept_body(plan)[0])
+
+
+def write_body_mesh(plan, path):
+    """Write the mesh of ``plan`` in medit format (write_medit) to ``path``; return the
+    mesh."""
+    kept = _kept_body(plan)
+    if kept[1] is None:
+        write_medit(kept[0], path)
+        kept[1] = Path(path).read_bytes()
+    else:
+        Path(path).write_bytes(kept[1])
+    return copy.deepcopy(kept[0])
+
+
+def _kept_body(plan):
     key = _digest(plan)
-    mesh = _body_meshes.get(key)
-    if mesh is None:
+    if key not in _body_meshes:
         mesh = _mirrored(_gmsh_body(plan)) if plan.mirror else _gmsh_body(plan)
-        _keep(_body_meshes, key, mesh)
+        _body_meshes[key] = [mesh, None]
+        while len(_body_meshes) > _KEPT:
+            _body_meshes.popitem(last=False)
     _body_meshes.move_to_end(key)
-    return copy.deepcopy(mesh)
-
-
-def _keep(cache, key, value):
-    cache[key] = value
-    while len(cache) > _KEPT:
-        cache.popitem(last=False)
+    return _body_meshes[key]
 
 
 def _digest(value, digest=None):
@@ -423,13 +433,4 @@ def _counterclockwise(points, triangles):
 
 def write_medit(mesh, path):
     """Write a mesh in medit ``.mesh`` format, which FreeFEM's ``readmesh`` reads."""
-    refs = mesh.cell_data.get("medit:ref", [None] * len(mesh.cells))
-    key = _digest((mesh.points, tuple((block.type, block.data, ref)
-                                      for block, ref in zip(mesh.cells, refs))))
-    text = _medit_texts.get(key)
-    if text is None:
-        meshio.write(Path(path), mesh, file_format="medit")
-        _keep(_medit_texts, key, Path(path).read_bytes())
-    else:
-        Path(path).write_bytes(text)
-        _medit_texts.move_to_end(key)
+    meshio.write(Path(path), mesh, file_format="medit")

@@ -15,7 +15,7 @@ import time
 from .errors import system_failure
 from .faults import checkpoint
 from .exchange import parse_reply, reply_count, request_arrays, write_sides
-from .mesh import body_mesh, coating_mesh, write_medit
+from .mesh import coating_mesh, write_body_mesh, write_medit
 from .outputs import check_written, write_body_fields
 from .body_plans import BodyPlan
 from .robin_map import check, receive_map, send_map_request
@@ -43,8 +43,11 @@ def _write_inputs(problem, workdir):
         plan = subdomain.plan
         if subdomain.kind == "body":
             files[name]["mesh"] = os.path.join(workdir, f"{name}.mesh")
-            mesh = body_mesh(plan) if isinstance(plan, BodyPlan) else coating_mesh(plan)
-            write_medit(mesh, files[name]["mesh"])
+            if isinstance(plan, BodyPlan):
+                mesh = write_body_mesh(plan, files[name]["mesh"])
+            else:
+                mesh = coating_mesh(plan)
+                write_medit(mesh, files[name]["mesh"])
             files[name]["geometry"] = body_fingerprint(mesh, sides)
         else:
             files[name]["nodes"] = os.path.join(workdir, f"{name}_nodes.txt")
@@ -171,7 +174,7 @@ class Subdomains:
         driver's wall time from the first request sent to the last reply) and the
         stamp's descent."""
         start = time.perf_counter()
-        requests = {name: request_arrays(self.sides[name], data) for name in self.entries}
+        requests = self._requests(data)
         self._ask_maps(requests)
         for name, entry in self.entries.items():
             self.mapped[name] = (entry.robin_map is not None

@@ -125,13 +125,12 @@ def test_a_body_is_meshed_once_per_plan(tmp_path, monkeypatch):
     changes leaves the cache alone; another plan is meshed anew."""
     from orchestrate import mesh as meshing
     base = discretize(paper_scene(), Settings()).subdomains["base"].plan
-    first = body_mesh(base)
-    write_medit(first, tmp_path / "first.mesh")
+    first = meshing.write_body_mesh(base, tmp_path / "first.mesh")
     calls = []
     monkeypatch.setattr(meshing, "_gmsh_body", lambda plan: calls.append(plan) or first)
     monkeypatch.setattr(meshing.meshio, "write", lambda *a, **k: calls.append(a))
-    again = body_mesh(discretize(paper_scene(), Settings()).subdomains["base"].plan)
-    write_medit(again, tmp_path / "again.mesh")
+    again = meshing.write_body_mesh(discretize(paper_scene(), Settings()).subdomains["base"].plan,
+                                    tmp_path / "again.mesh")
     assert calls == []
     np.testing.assert_array_equal(again.points, first.points)
     assert (tmp_path / "again.mesh").read_bytes() == (tmp_path / "first.mesh").read_bytes()
