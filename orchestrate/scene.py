@@ -41,6 +41,13 @@ METHODS = ("active-set", "paper")
 INNER_SOLVES = ("auto", "direct", "iterate", "two-level")   # a contact set's fixed point
 WORKERS = ("persistent", "fresh")
 DEFAULT_ROBIN = 2.0    # E/b
+# With a coarse correction (two levels, orchestrate/coarse.py) the fine loop is left with
+# the interface modes the coarse mesh cannot see, wavelengths below about its element
+# (Settings.element_size), and a Robin parameter of their stiffness, E over that length,
+# damps them fastest. Measured on five paper scenes (both models, E2 = E/5 ... 5E),
+# iterations summed at mesh level 2 for gamma = 2, 8, 16, 32, 64 E/b: 283, 194, 156, 132,
+# 126; at level 3 for 32, 48, 64, 96: 151, 141, 133, 139.
+TWO_LEVEL_ROBIN_PER_LENGTH = 4.0   # E: gamma = 4 E / element_size = 64 E/b at b/16
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
 # The accelerated loop's default penalty per unit length of an interface element (E):
 # theta = 2.5e-4 b/E on the paper's mesh (elements b/16), shrinking with the elements, so
@@ -439,13 +446,27 @@ class Settings:
                  "(0, 1] (a relative error; 0.01 is 1 %)")
 
     @property
+    def may_use_two_levels(self):
+        """Whether a run iterates with a coarse correction (orchestrate/coarse.py; unless
+        its interfaces do not pair up with the coarse mesh's): its coarse level starts
+        with the run, and its workers probe no map (orchestrate/subdomains.py)."""
+        return (self.method != "paper" and self.mesh_level > 1
+                and self.inner_solve in ("auto", "two-level"))
+
+    @property
     def robin_parameter(self):
-        """gamma: as given, else the paper's 1/theta for its loop and 2 E/b otherwise
-        (measured best for the active-set loop on the figure scenes, README), but never
-        above 1/theta, where the exchange stays away from its singularity gamma theta = 2."""
+        """gamma: as given, else the paper's 1/theta for its loop; for the active-set loop
+        2 E/b (measured best on the figure scenes, README), or TWO_LEVEL_ROBIN_PER_LENGTH
+        E over the element length where a coarse correction may take the smooth modes;
+        never above 1/theta, where the exchange stays away from its singularity
+        gamma theta = 2."""
         if self.robin is not None:
             return self.robin
-        return 1.0 / self.theta if self.method == "paper" else min(DEFAULT_ROBIN, 1.0 / self.theta)
+        if self.method == "paper":
+            return 1.0 / self.theta
+        gamma = (TWO_LEVEL_ROBIN_PER_LENGTH / self.element_size if self.may_use_two_levels
+                 else DEFAULT_ROBIN)
+        return min(gamma, 1.0 / self.theta)
 
 
 def check_compatible(scene, settings):

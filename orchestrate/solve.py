@@ -57,7 +57,8 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
           session=None):
     """Solve the scene; write results into ``out_dir``; return the summary dict.
     ``start_from``: a finished run's folder whose interface state is the first iterate
-    (orchestrate/warm_start.py; ignored where it shares no interface). ``session``: a
+    (orchestrate/warm_start.py; ignored where it shares no interface, and where a coarse
+    level starts the run from its own solution of the scene). ``session``: a
     Session (orchestrate/session.py) that keeps workers from scene to scene; without
     one, the run's workers stop with it.
 
@@ -71,20 +72,21 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     start = time.perf_counter()
     with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
           contextlib.nullcontext(session) if session is not None else Session() as workers,
-          CoarseLevel(problem) if may_use_two_levels(settings)      # probes meanwhile
+          CoarseLevel(problem) if settings.may_use_two_levels      # probes meanwhile
           else contextlib.nullcontext() as coarse_level):
         scratch = str(folder.scratch)
         files = write_inputs(problem, workdir)
         with start_subdomains(problem, settings, files, workers, scratch) as subdomains:
             setup_seconds = time.perf_counter() - start
             checkpoint("setup")
-            first_iterate = (state_from_run(start_from, StateLayout(problem.interfaces))
-                             if start_from is not None else None)
-            coarse = (coarse_level.correction()
-                      if coarse_level is not None and two_levels(settings, subdomains)
-                      else None)
-            if coarse_level is not None:
+            coarse = None
+            if coarse_level is not None:        # a fine mesh: iterated with two levels
+                coarse = coarse_level.correction()
                 coarse_level.close()
+            # a coarse level solves this very scene's contact problem: a better start than
+            # a neighbour's answer (fewer contact sets: measured 1-2 against 0-9 at level 3)
+            first_iterate = (state_from_run(start_from, StateLayout(problem.interfaces))
+                             if start_from is not None and coarse is None else None)
             loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate,
                                   subdomains.robin_maps, coarse)
             if loop.converged:
@@ -111,8 +113,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             "setup_time_s": setup_seconds,
             "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
             "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
-            "inner_solve_used": ("two-level" if coarse is not None
-                                 else _inner_solve_used(loop.history)),
+            "inner_solve_used": _inner_solve_used(loop.history, coarse is not None),
             "started_from": (str(start_from) if first_iterate is not None
                              and settings.method != "paper" else None),
             "dofs": dofs,
@@ -147,27 +148,15 @@ def prepare(scene, settings):
             scales)
 
 
-def may_use_two_levels(settings):
-    """Whether a run may iterate with a coarse correction (orchestrate/coarse.py): its
-    coarse level then starts with the run, before the decision (two_levels)."""
-    return (settings.method != "paper" and settings.mesh_level > 1
-            and settings.inner_solve in ("auto", "two-level"))
-
-
-def two_levels(settings, subdomains):
-    """Whether the loop iterates with a coarse correction: asked, or by "auto" on a fine
-    mesh whose contact sets are not solved directly."""
-    return may_use_two_levels(settings) and (settings.inner_solve == "two-level"
-                                             or not subdomains.solves_directly)
-
-
-def _inner_solve_used(history):
-    """How the loop reached its contact sets' fixed points: "direct", "iterate", or
-    "direct, then iterate" (a system too ill-conditioned to solve directly)."""
+def _inner_solve_used(history, two_levels):
+    """How the loop reached its contact sets' fixed points: "direct", "iterate" or
+    "two-level" (iterated with a coarse correction), or "direct, then ..." (a system too
+    ill-conditioned to solve directly)."""
     direct = [row["direct"] for row in history]
     if all(direct):
         return "direct"
-    return "direct, then iterate" if direct[0] else "iterate"
+    iterated = "two-level" if two_levels else "iterate"
+    return f"direct, then {iterated}" if direct[0] else iterated
 
 
 def zone_end_reached(problem, psi):

@@ -91,6 +91,11 @@ def load_arguments(problem):
 # most this many interface unknowns, weighted by its dofs over the largest worker's
 # (Subdomains._maps_pay; `python -m orchestrate.bench_direct` times both ways).
 MAP_UNKNOWNS = 250
+# On a mesh fine enough for two levels (mesh level 2 and finer) "auto" and "two-level"
+# probe no map, not even a kept worker's: iterated with a coarse correction a scene takes
+# 20-30 Robin iterations, while the maps of the indenter and the base cost 10 s at mesh
+# level 3, and a new indenter (another coating thickness) 5 s, against 2.5 s for a whole
+# scene with kept workers.
 
 # Arguments that name a file: the worker's identity is the file's content (its geometry).
 _FILE_ARGUMENTS = {"-mesh", "-nodes", "-sides"}
@@ -104,12 +109,14 @@ class Subdomains:
     map's (the active-set loop's never change). ``inner_solve`` (Settings): with
     "direct", every new worker gives its map too, and with every map known the loop
     solves each contact set's fixed point directly (robin_maps); "auto" does so where
-    the maps pay (_maps_pay); "iterate" never."""
+    the maps pay (_maps_pay); "iterate" never. On a mesh fine enough for two levels,
+    "auto" and "two-level" use no map at all."""
 
     def __init__(self, problem, files, session, output_dir, use_maps=True, inner_solve="auto"):
         self.problem = problem
         self.session = session
-        self.use_maps = use_maps
+        self.use_maps = use_maps and (inner_solve == "direct"
+                                      or not problem.settings.may_use_two_levels)
         self.sides = {name: problem.sides_of(name) for name in problem.subdomains}
         self.components = {name: [problem.interfaces[i].components for i, _ in self.sides[name]]
                            for name in problem.subdomains}
@@ -133,7 +140,7 @@ class Subdomains:
         self.last_requests, self.mapped = {}, {}
         self._pending = {}           # map requests sent and not yet answered, by name
         self.dofs = self._start()
-        self.direct = use_maps and inner_solve != "iterate"
+        self.direct = self.use_maps and inner_solve in ("auto", "direct")
         self.map_new = self.direct and (inner_solve == "direct" or self._maps_pay())
 
     def _maps_pay(self):
