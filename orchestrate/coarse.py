@@ -10,8 +10,10 @@ coarse), it serves twice:
 - the first iterate: the coarse contact problem solved (semi-smooth Newton on the coarse
   system, no fine solve), interpolated;
 - a preconditioner: each Robin residual r = F(x) - x of the fine loop becomes
-  r + P ((I - A_c)^-1 - I) R r, i.e. r + P S (I - L S)^-1 L R r, and Anderson
-  acceleration drives x to the fixed point of x + (that), the fine loop's own.
+  r + P ((I - B_c)^-1 - I) R r, and Anderson acceleration drives x to the fixed point
+  of x + (that), the fine loop's own. B_c is the coarse model of the fine loop's whole
+  iteration: its groups of subdomains (Problem.sweep) one after the other, each group's
+  rows of the state taken from A_c, the others kept.
 
 The coarse workers start before the fine ones and probe while the fine run meshes and
 starts (CoarseLevel); they stop once their maps are read.
@@ -120,6 +122,7 @@ class CoarseCorrection:
                                                                      coarse_layout, system)
         self.prolong = _interpolation(coarse_layout, layout)     # P: coarse -> fine
         self.restrict = _interpolation(layout, coarse_layout)    # R: fine -> coarse
+        self._groups = [_rows_of(coarse, coarse_layout, group) for group in coarse.sweep]
         self._psi = None
 
     def laws(self, psi):
@@ -138,8 +141,8 @@ class CoarseCorrection:
         return self.prolong @ x
 
     def correction(self, psi, residual):
-        """P S (I - L S)^-1 L R residual, with the coarse laws of the fine contact set psi
-        (each coarse point takes the state of the fine point nearest along s)."""
+        """P ((I - B_c)^-1 - I) R residual, with the coarse laws of the fine contact set
+        psi (each coarse point takes the state of the fine point nearest along s)."""
         if self._psi is None or not np.array_equal(psi, self._psi):
             self._set_contact(psi)
         return self.prolong @ (self._coarse_correction @ (self.restrict @ residual))
@@ -154,8 +157,30 @@ class CoarseCorrection:
             coarse_psi[coarse] = psi[fine][nearest]
         L, _, alpha = self.system.laws_matrix(self.laws(coarse_psi))
         S, _ = self.system.state_matrix(alpha)
+        one_iteration = _sweep_matrix(S @ L, self._groups)
         self._psi = psi.copy()
-        self._coarse_correction = S @ np.linalg.solve(np.eye(self.system.size) - L @ S, L)
+        self._coarse_correction = np.linalg.solve(np.eye(len(one_iteration)) - one_iteration,
+                                                  one_iteration)
+
+
+def _rows_of(problem, layout, names):
+    """Whether each entry of the state belongs to a side of the subdomains ``names``."""
+    rows = np.zeros(layout.size, dtype=bool)
+    for name in names:
+        for i, side in problem.sides_of(name):
+            rows[layout.slices["u", i, side]] = rows[layout.slices["t", i, side]] = True
+    return rows
+
+
+def _sweep_matrix(A, groups):
+    """The linear part of one iteration that solves the groups one after the other, each
+    from the state the ones before left, where solving all at once is x -> A x + c: the
+    product of the groups' steps, each A's rows of its group and the identity's others."""
+    identity = np.eye(len(A))
+    sweep = identity
+    for rows in groups:
+        sweep = np.where(rows[:, None], A, identity) @ sweep
+    return sweep
 
 
 def _interpolation(source, target):

@@ -119,6 +119,7 @@ class Subdomain:
     nu: float
     plan: object               # BodyPlan, CoatingPlan or ShellSpec
     stamp: bool = False        # the indenter: loaded by the stamp
+    coating: bool = False      # a coating patch: its interfaces meet the bodies only
 
 
 @dataclass(frozen=True)
@@ -135,6 +136,16 @@ class Problem:
         """(interface index, side index) of every side of a subdomain, in interface order."""
         return [(i, k) for i, interface in enumerate(self.interfaces)
                 for k, side in enumerate(interface.sides) if side.subdomain == name]
+
+    @property
+    def sweep(self):
+        """The groups of subdomains of one multiplicative Robin iteration, solved one after
+        the other, each from the state the groups before it left (robin.py): the bodies,
+        then the coating patches, which meet bodies only, so each group's solves stay
+        independent."""
+        bodies = tuple(name for name, sub in self.subdomains.items() if not sub.coating)
+        patches = tuple(name for name, sub in self.subdomains.items() if sub.coating)
+        return tuple(group for group in (bodies, patches) if group)
 
     @property
     def contacts(self):
@@ -313,13 +324,15 @@ def discretize(scene, settings):
             coating_side = Side(name, (s - nodes[0]) * stretch, (   # the bottom face's v, w
                 _shell_coefficients(n, coating, 1.0, 0.0, -0.5 * coating.thickness, 0.0),
                 _shell_coefficients(n, coating, 0.0, 1.0, 0.0, -0.5)))
-            subdomains[name] = Subdomain(name, "shell", coating.E, coating.nu, spec)
+            subdomains[name] = Subdomain(name, "shell", coating.E, coating.nu, spec,
+                                         coating=True)
         else:
             plan = CoatingPlan(face, nodes, coating.thickness, coating_layers(coating, level),
                                "Contact" if number in in_zone else "Free",
                                "Symmetry" if on_axis else "Free")
             coating_side = Side(name, chord_points(position), (tangent.copy(), normal.copy()))
-            subdomains[name] = Subdomain(name, "body", coating.E, coating.nu, plan)
+            subdomains[name] = Subdomain(name, "body", coating.E, coating.nu, plan,
+                                         coating=True)
         base_side = Side("base", chord_points(position), (tangent.copy(), normal.copy()))
         bonds.append(Interface(f"bond-{name}", "bond", s, position, normal, tangent, weight,
                                np.zeros_like(s), (coating_side, base_side)))

@@ -151,12 +151,13 @@ class Subdomains:
         return all(self.unknowns[name] * self.dofs[name] <= MAP_UNKNOWNS * largest
                    for name, entry in self.entries.items() if entry.scenes == 1)
 
-    def _start(self):
-        """Take every worker (a new one assembles and factorises at once); return their
-        dofs."""
+    def _start(self, names=None):
+        """Take the workers of ``names`` (None: every one; a new one assembles and
+        factorises at once); return their dofs."""
         timeout = self.problem.settings.worker_timeout
         try:
-            for name, (script, arguments) in self.specs.items():
+            for name in (self.specs if names is None else names):
+                script, arguments = self.specs[name]
                 self.entries[name] = self.session.take(name, script, arguments, self.keys[name],
                                                        self.origins[name], timeout)
             return {name: self.session.ready(entry) for name, entry in self.entries.items()}
@@ -172,25 +173,28 @@ class Subdomains:
         """The subdomains whose worker an earlier scene started."""
         return [name for name, entry in self.entries.items() if entry.scenes > 1]
 
-    def solve(self, data):
-        """One independent solve per subdomain.
+    def solve(self, data, names=None):
+        """One independent solve per subdomain of ``names`` (None: every one).
 
         ``data``: {(interface index, side): (alpha, g)} (robin.robin_data). Returns the
-        traces {(interface index, side): trace}, the timings (each worker's CPU seconds
-        for the request, "back_" + name for its back-substitution alone, and "wait", the
-        driver's wall time from the first request sent to the last reply) and the
-        stamp's descent."""
+        traces {(interface index, side): trace} of their sides, the timings (each
+        worker's CPU seconds for the request, "back_" + name for its back-substitution
+        alone, and "wait", the driver's wall time from the first request sent to the last
+        reply) and the stamp's descent (None unless the stamp's body solved)."""
         start = time.perf_counter()
-        requests = self._requests(data)
+        names = list(self.entries) if names is None else names
+        requests = self._requests(data, names)
         self._ask_maps(requests)
-        for name, entry in self.entries.items():
+        for name in names:
+            entry = self.entries[name]
             self.mapped[name] = (entry.robin_map is not None
                                  and entry.robin_map.serves(requests[name]))
             if not self.mapped[name]:
                 entry.worker.send(CMD_SOLVE, requests[name])
-        self.last_requests = requests
+        self.last_requests.update(requests)
         traces, seconds, descent = {}, {}, None
-        for name, entry in self.entries.items():
+        for name in names:
+            entry = self.entries[name]
             if self.mapped[name]:
                 arrays = entry.robin_map.reply(requests[name])
             else:
@@ -220,8 +224,9 @@ class Subdomains:
         if self.solves_directly:
             self._send_map_requests(self._requests(data))
 
-    def _requests(self, data):
-        return {name: request_arrays(self.sides[name], data) for name in self.entries}
+    def _requests(self, data, names=None):
+        return {name: request_arrays(self.sides[name], data)
+                for name in (self.entries if names is None else names)}
 
     @property
     def solves_directly(self):
@@ -244,7 +249,8 @@ class Subdomains:
                                           self.components[name])
 
     def _send_map_requests(self, requests):
-        for name, entry in self.entries.items():
+        for name in requests:
+            entry = self.entries[name]
             if entry.robin_map is None and name not in self._pending and self._to_map(entry):
                 send_map_request(entry.worker, requests[name])
                 self._pending[name] = requests[name]
@@ -304,23 +310,25 @@ class FreshProcessSubdomains(Subdomains):
     def __init__(self, *arguments):
         super().__init__(*arguments, use_maps=False)
         self._drop()
-        self.last_data = None
+        self.last_data = {}          # the data of each subdomain's last solve
 
-    def solve(self, data):
+    def solve(self, data, names=None):
         start = time.perf_counter()
-        self._start()
+        names = list(self.specs) if names is None else names
+        self._start(names)
         try:
-            traces, seconds, descent = super().solve(data)
+            traces, seconds, descent = super().solve(data, names)
         finally:
             self._drop()
-        self.last_data = data
+        self.last_data.update((name, data) for name in names)
         seconds["wait"] = time.perf_counter() - start
         return traces, seconds, descent
 
     def write_outputs(self):
         self._start()
         try:
-            super().solve(self.last_data)
+            for name, data in self.last_data.items():
+                super().solve(data, [name])
             super().write_outputs()
         finally:
             self._drop()
