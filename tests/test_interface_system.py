@@ -48,7 +48,7 @@ def _loop_image(problem, layout, maps, laws, x):
         sides = problem.sides_of(name)
         received, _ = parse_reply(problem, sides, robin_map.reply(request_arrays(sides, data)))
         traces.update(received)
-    return state_after_solve(layout, data, traces)
+    return state_after_solve(layout, data, traces, x)
 
 
 @pytest.mark.parametrize("hold_inactive", [True, False])

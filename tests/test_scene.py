@@ -43,7 +43,9 @@ def default_run(tmp_path_factory):
 
 
 # `python -m orchestrate solve --model shell --h2 0.125 --E2 1`, with this stopping test
-PINNED = {"iterations": 109, "contact_force": 0.0003886008039077872,
+# (iterations: 109 with every subdomain solved at once, 67 since the coating is solved
+# from the bodies' fresh traces, robin.py; the numbers moved by 1.4e-9 at most)
+PINNED = {"iterations": 67, "contact_force": 0.0003886008039077872,
           "interface_force": 0.00038860080389541065, "stamp_reaction": 0.00038860080395013423,
           "base_reaction": 0.0003886008038900048, "peak_contact_stress": -0.0005302321688831679,
           "peak_interface_stress": -0.0005272281328311636,
