@@ -86,8 +86,10 @@ def load_arguments(problem):
 
 
 # Probing a map costs one back-substitution per interface unknown, in-process, about 0.4
-# of what a Robin iteration of the loop costs a worker of the same size; the loop takes
-# 100-160 iterations on the example scenes. So the maps pay while every new worker has at
+# of what a Robin iteration of the loop costs a worker of the same size; the loop took
+# 100-160 iterations on the example scenes with all subdomains at once (68-98 since the
+# coatings are solved after the bodies: single runs then break even, a session's kept
+# maps still pay). So the maps pay while every new worker has at
 # most this many interface unknowns, weighted by its dofs over the largest worker's
 # (Subdomains._maps_pay; `python -m orchestrate.bench_direct` times both ways).
 MAP_UNKNOWNS = 250
