@@ -72,7 +72,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     start = time.perf_counter()
     with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
           contextlib.nullcontext(session) if session is not None else Session() as workers,
-          CoarseLevel(problem) if settings.may_use_two_levels      # probes meanwhile
+          CoarseLevel(problem) if settings.two_levels      # probes meanwhile
           else contextlib.nullcontext() as coarse_level):
         scratch = str(folder.scratch)
         files = write_inputs(problem, workdir)

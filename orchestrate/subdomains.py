@@ -118,7 +118,7 @@ class Subdomains:
         self.problem = problem
         self.session = session
         self.use_maps = use_maps and (inner_solve == "direct"
-                                      or not problem.settings.may_use_two_levels)
+                                      or not problem.settings.two_levels)
         self.sides = {name: problem.sides_of(name) for name in problem.subdomains}
         self.components = {name: [problem.interfaces[i].components for i, _ in self.sides[name]]
                            for name in problem.subdomains}
