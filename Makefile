@@ -48,6 +48,9 @@ results/discrete/%/summary.json: orchestrate/scenes/discrete.toml | setup
 	$(PYTHON) -m orchestrate solve --quiet --overwrite --scene $< --model $* --out $(@D)
 
 setup: .venv/.installed .freefem-installed
+	@# the package byte-compiled (again where a source changed): an editable install is
+	@# not, and where PYTHONDONTWRITEBYTECODE is set every process would compile it anew
+	@$(PYTHON) -m compileall -q orchestrate >/dev/null
 
 # FreeFEM and the X11/GL client libraries the gmsh wheel links against, from Debian.
 .freefem-installed:

@@ -12,10 +12,9 @@ terminated (SIGTERM).
 
 import argparse
 from dataclasses import fields
-import importlib
+from pathlib import Path
 import signal
 import sys
-import threading
 import tomllib
 import traceback
 
@@ -54,6 +53,8 @@ _SETTINGS_HELP = {
                     "memory free)",
     "model_tolerance": "with --model auto: the estimated relative error of the peak contact "
                        "stress the chosen coating model may have",
+    "body_fields": "write the indenter's and base's nodal fields (CSV, VTU; the coatings' "
+                   "and the interfaces' are written always)",
 }
 _CHOICES = {"model": MODEL_CHOICES, "method": METHODS, "inner_solve": INNER_SOLVES,
             "workers": WORKERS}
@@ -81,10 +82,14 @@ def _add_scene_options(parser):
 def _add_settings_options(parser):
     group = parser.add_argument_group("settings", "how the scene is solved")
     for f in fields(Settings):
+        text = f"{_SETTINGS_HELP[f.name]} (default {f.default})"
+        if isinstance(f.default, bool):               # --body-fields / --no-body-fields
+            group.add_argument(_option(f.name), dest=f.name, default=None, help=text,
+                               action=argparse.BooleanOptionalAction)
+            continue
         kind = float if f.default is None else type(f.default)
         group.add_argument(_option(f.name), dest=f.name, type=kind, default=None,
-                           choices=_CHOICES.get(f.name),
-                           help=f"{_SETTINGS_HELP[f.name]} (default {f.default})")
+                           choices=_CHOICES.get(f.name), help=text)
 
 
 def parse_assignment(text):
@@ -138,10 +143,13 @@ def build_parser():
     figures = commands.add_parser(
         "figures", help="the paper's figures 3, 4 and 5 (what `make fig3 fig4 fig5` runs)",
         description="Run the sweep of the figures' scenes (orchestrate/sweeps/figures.toml; "
-                    "finished runs are skipped) into results/figures/, then draw "
-                    "results/fig3-5 (png, pdf, _data.csv), all in one process.",
-        epilog="exit status: as `sweep`'s; the figures are drawn only if every run converged")
+                    "finished runs are skipped) into OUT/figures/ and draw OUT/fig3-5 (png, "
+                    "pdf, _data.csv), each figure as soon as its runs have converged, in a "
+                    "drawing process beside the sweep.",
+        epilog="exit status: as `sweep`'s; a figure is drawn only if its runs converged")
     figures.add_argument("--jobs", type=int, help="runs at once (default: one per core)")
+    figures.add_argument("--out", help="folder of the figures and of their runs "
+                                       "(default: results/)")
     plot = commands.add_parser("plot", help="plot the stresses of a finished run",
                                description="Write RUN/stresses.png from RUN's CSV files.")
     plot.add_argument("run", help="a folder written by `solve`")
@@ -201,29 +209,26 @@ def _say(text):
 
 
 def _figures(args):
+    from .figure_sweep import FigureDrawing
     from .paths import FIGURE_SWEEP, RESULTS_DIR
-    runs = RESULTS_DIR / "figures"
-    # matplotlib is imported while the runs run: this process only waits for them
-    drawing = threading.Thread(target=importlib.import_module, args=("orchestrate.figures",))
-    drawing.start()
-    try:
+    out = Path(args.out) if args.out else RESULTS_DIR
+    runs = out / "figures"
+    with FigureDrawing(FIGURE_SWEEP, runs, out) as drawing:
         status = _sweep(argparse.Namespace(file=FIGURE_SWEEP, out=runs, engine="local",
-                                           jobs=args.jobs, scheduler=None, retry_failed=False))
-    finally:
-        drawing.join()
-    if status != EXIT_CONVERGED:
-        return status
-    from .figures import draw
-    for path in draw(["fig3", "fig4", "fig5"], [runs], RESULTS_DIR):
-        _say(path)
+                                           jobs=args.jobs, scheduler=None, retry_failed=False),
+                        drawing.run_done)
+        if status != EXIT_CONVERGED:
+            return status
+        for path in drawing.finish():
+            _say(path)
     return EXIT_CONVERGED
 
 
-def _sweep(args):
+def _sweep(args, run_done=lambda name=None: None):
     from .sweep import run_sweep
     try:
         table = run_sweep(args.file, args.out, args.engine, args.jobs, args.scheduler,
-                          retry_failed=args.retry_failed)
+                          retry_failed=args.retry_failed, run_done=run_done)
     except (ParameterError, FreeFemMissing) as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_REFUSED

@@ -44,6 +44,18 @@ class InterfaceSystem:
         """(L, h, alpha): the data g = L x + h of the state x under ``laws``, and the
         Robin coefficient of every trace entry."""
         n = self.size
+        coefficients, h = self._coefficients(laws)
+        rows = np.arange(n)
+        L = np.zeros((n, 2 * n))
+        L[rows, rows] = coefficients["own"]
+        L[rows, self.other] += coefficients["other_u"]
+        L[rows, n + self.other] = coefficients["other_t"]
+        return L, h, coefficients["alpha"]
+
+    def _coefficients(self, laws):
+        """Every trace entry's coefficients of its law (alpha, own, other_u, other_t:
+        robin.robin_laws), and the laws' constants h."""
+        n = self.size
         coefficients = {name: np.empty(n) for name in ("alpha", "own", "other_u", "other_t")}
         h = np.empty(n)
         for (i, side), law in laws.items():
@@ -52,12 +64,17 @@ class InterfaceSystem:
             for name, values in coefficients.items():
                 values[where] = np.tile(getattr(law, name), components)
             h[where] = np.ravel(law.constant)
-        rows = np.arange(n)
-        L = np.zeros((n, 2 * n))
-        L[rows, rows] = coefficients["own"]
-        L[rows, self.other] += coefficients["other_u"]
-        L[rows, n + self.other] = coefficients["other_t"]
-        return L, h, coefficients["alpha"]
+        return coefficients, h
+
+    def _times_laws(self, coefficients, x):
+        """L x, for a state x (a vector or the columns of a matrix): every entry's law
+        takes its own trace and the other side's trace and traction, three terms (L is
+        that sparse; a dense product would cost most of a solve)."""
+        n, other = self.size, self.other
+        shape = (-1,) + (1,) * (x.ndim - 1)
+        return (coefficients["own"].reshape(shape) * x[:n]
+                + coefficients["other_u"].reshape(shape) * x[other]
+                + coefficients["other_t"].reshape(shape) * x[n + other])
 
     def state_matrix(self, alpha):
         """(S, s0): the state x = S g + s0 the subdomains answer to the data g."""
@@ -69,10 +86,10 @@ class InterfaceSystem:
         """(state, refined): the state at the fixed point for ``laws``, and the state after
         one step of iterative refinement; their difference estimates the first's
         rounding error."""
-        L, h, alpha = self.laws_matrix(laws)
-        S, s0 = self.state_matrix(alpha)
-        system = np.eye(self.size) - L @ S
-        right = L @ s0 + h
+        coefficients, h = self._coefficients(laws)
+        S, s0 = self.state_matrix(coefficients["alpha"])
+        system = np.eye(self.size) - self._times_laws(coefficients, S)
+        right = self._times_laws(coefficients, s0) + h
         g = np.linalg.solve(system, right)
         correction = np.linalg.solve(system, right - system @ g)
         return S @ g + s0, S @ (g + correction) + s0

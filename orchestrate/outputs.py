@@ -63,14 +63,17 @@ def write_csv(path, columns):
     written(path, write)
 
 
-def check_written(prefix, kind, counts):
+def check_written(prefix, kind, counts, fields=True):
     """Raise SystemFailure unless a worker's files next to ``prefix`` are whole: as many
     rows and lines as it reported writing (body: nodal CSV rows, cell rows, reaction
-    lines; shell: field rows). FreeFEM does not report a failed write; a full disk or a
-    file size limit leaves its files short."""
-    expected = ({f"{prefix}.csv": counts[0] + 1, f"{prefix}_cells.csv": counts[1] + 1,
-                 f"{prefix}_reactions.txt": counts[2]}
-                if kind == "body" else {f"{prefix}_fields.csv": counts[0] + 1})
+    lines; shell: field rows; without ``fields`` a body's reactions alone). FreeFEM does
+    not report a failed write; a full disk or a file size limit leaves its files short."""
+    if kind == "body":
+        expected = {f"{prefix}_reactions.txt": counts[2]}
+        if fields:
+            expected.update({f"{prefix}.csv": counts[0] + 1, f"{prefix}_cells.csv": counts[1] + 1})
+    else:
+        expected = {f"{prefix}_fields.csv": counts[0] + 1} if fields else {}
     for path, lines in expected.items():
         found = _line_count(path)
         if found != lines:

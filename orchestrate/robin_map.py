@@ -67,7 +67,7 @@ def receive_map(worker, arrays, components):
     if any(len(column) != unknowns + 1 for column in columns[:-1]):
         raise WorkerError(f"worker {worker.name} sent a map of the wrong size")
     base = columns[0]
-    table = np.array(columns[1:-1]).T - base[:, None]     # column j: the response to e_j
+    table = np.array(columns[1:-1]).T                     # column j: the response to e_j
     return RobinMap(alphas, components, table[:unknowns], base[:unknowns],
                     table[unknowns], base[unknowns])
 

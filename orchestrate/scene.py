@@ -392,6 +392,9 @@ class Settings:
     memory_limit: Optional[float] = None  # GiB the run may take; None: 3/4 of what is free
     model_tolerance: float = 0.01  # model = "auto": the estimated error of the peak
                                    # contact stress a chosen coating model may have
+    body_fields: bool = True       # write the indenter's and base's nodal fields (CSV,
+                                   # VTU); the interfaces' tables, the reactions and the
+                                   # coatings' fields are written always
 
     def __post_init__(self):
         _choice("workers", self.workers, WORKERS)
@@ -445,6 +448,8 @@ class Settings:
         _require(_finite(self.model_tolerance) and 0 < self.model_tolerance <= 1,
                  "model_tolerance", f"model_tolerance = {self.model_tolerance!r} must lie in "
                  "(0, 1] (a relative error; 0.01 is 1 %)")
+        _require(isinstance(self.body_fields, bool), "body_fields",
+                 f"body_fields = {self.body_fields!r} must be true or false")
 
     @property
     def two_levels(self):

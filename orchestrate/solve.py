@@ -223,7 +223,8 @@ def _write_results(problem, loop, out_dir):
             write_shell_fields(os.path.join(out_dir, f"{name}_fields.csv"), subdomain.plan,
                                os.path.join(out_dir, f"{name}.vtu"))
     write_collection(os.path.join(out_dir, RUN_COLLECTION),
-                     [f"{name}.vtu" for name in problem.subdomains])
+                     [f"{name}.vtu" for name in problem.subdomains
+                      if os.path.exists(os.path.join(out_dir, f"{name}.vtu"))])
 
     indenter = read_reactions(os.path.join(out_dir, "indenter_reactions.txt"))
     base = read_reactions(os.path.join(out_dir, "base_reactions.txt"))

@@ -266,9 +266,10 @@ class Subdomains:
 
     def write_outputs(self):
         """Ask every worker to write its fields (CSV) and reactions next to its output
-        prefix, check that every file is whole, and write each body's VTU from them. A
-        worker whose last solve was its map's solves for real first (its fields), and its
-        traces must agree with the map's."""
+        prefix, check that every file is whole, and write each body's VTU from them; the
+        indenter's and base's fields only with Settings.body_fields (a coating's answers
+        read its fields). A worker whose last solve was its map's solves for real first
+        (its fields), and its traces must agree with the map's."""
         real = [name for name, mapped in self.mapped.items() if mapped]
         for name in real:
             self.entries[name].worker.send(CMD_SOLVE, self.last_requests[name])
@@ -276,15 +277,17 @@ class Subdomains:
             entry = self.entries[name]
             reply = entry.worker.receive_arrays(reply_count(self.problem, self.sides[name]))
             check(entry.worker.name, entry.robin_map, self.last_requests[name], reply)
+        fields = {name: subdomain.coating or self.problem.settings.body_fields
+                  for name, subdomain in self.problem.subdomains.items()}
         for name, entry in self.entries.items():
             entry.worker.send_output(self.output_prefix[name],
-                                     self.origins[name] - entry.origin)
+                                     self.origins[name] - entry.origin, fields[name])
         checkpoint("output")
         for name, entry in self.entries.items():
             written, = entry.worker.receive_arrays(1)
             kind = self.problem.subdomains[name].kind
-            check_written(self.output_prefix[name], kind, written)
-            if kind == "body":
+            check_written(self.output_prefix[name], kind, written, fields[name])
+            if kind == "body" and fields[name]:
                 write_body_fields(self.output_prefix[name])
 
     def _drop(self):

@@ -396,7 +396,7 @@ class Progress:
 # ---- engines --------------------------------------------------------------------------
 
 def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False,
-              neighbours=None):
+              neighbours=None, run_done=lambda name=None: None):
     """Local worker processes, at most ``jobs`` runs at once; ``pending`` holds (name,
     values) pairs.
 
@@ -431,8 +431,9 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False,
                     name, _ = running.pop(future)
                     progress.update(done=1, failed=_failed(sweep_dir, name),
                                     running=len(running) + min(len(queue), jobs - len(running)))
+                    run_done(name)
         except concurrent.futures.process.BrokenProcessPool:
-            _kill_pool(pool)                  # the others too: their runs are tried again
+            kill_pool(pool)                  # the others too: their runs are tried again
             if len(running) != 1:
                 alone = list(running.values()) + alone
             else:
@@ -450,13 +451,13 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False,
             running = {}
         finally:
             if running:
-                _kill_pool(pool)
+                kill_pool(pool)
             else:
                 pool.shutdown()
         remove_dead_work_folders()
 
 
-def _kill_pool(pool):
+def kill_pool(pool):
     """Kill the pool's processes (their FreeFEM workers die with them) and wait for them:
     a dead process's locks are free, and what its run left can go."""
     processes = list((getattr(pool, "_processes", None) or {}).values())
@@ -468,7 +469,7 @@ def _kill_pool(pool):
 
 
 def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retry_failed=False,
-             neighbours=None):
+             neighbours=None, run_done=lambda name=None: None):
     """Dask distributed: a local cluster of ``jobs`` workers, or a scheduler's. A task
     whose workers keep dying (Dask retries it) is recorded as failed."""
     from dask.distributed import Client, LocalCluster, as_completed
@@ -491,6 +492,7 @@ def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retr
                     "status": "error", "converged": False,
                     "reason": "the Dask workers running it kept dying (killed, or out of memory)"})
             progress.update(done=1, failed=_failed(sweep_dir, name))
+            run_done(name)
     finally:
         client.close()
         if cluster is not None:
@@ -505,8 +507,10 @@ ENGINES = ("local", "dask")
 
 
 def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=sys.stderr,
-              retry_failed=False):
-    """Run a sweep file; return its table. Finished runs are skipped."""
+              retry_failed=False, run_done=lambda name=None: None):
+    """Run a sweep file; return its table. Finished runs are skipped. ``run_done(name)``
+    is called once before the first run and after each (the figures draw from finished
+    runs while the others run: orchestrate/figure_sweep.py)."""
     name, points = load_sweep(path)
     scene_dir = Path(path).resolve().parent
     if engine not in ENGINES:
@@ -537,14 +541,15 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
         progress.failed = sum(_failed(sweep_dir, name) for name, _ in runs
                               if name not in waiting)
         try:
+            run_done()
             if pending:
                 neighbours = runs if warm_start_of(path) else None
                 if engine == "dask":
                     run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler,
-                             retry_failed, neighbours)
+                             retry_failed, neighbours, run_done)
                 else:
                     run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed,
-                              neighbours)
+                              neighbours, run_done)
         finally:
             progress.close()
             remove_dead_run_leftovers(sweep_dir / "runs")  # of runs whose process died

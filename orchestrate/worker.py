@@ -94,7 +94,7 @@ class Worker:
     # -- messages ---------------------------------------------------------------------
     def wait_ready(self):
         """Wait for the worker's set-up (assembly, factorisation); return its dof count."""
-        tokens = self._read_reply()
+        tokens = self._read_reply().decode().split()
         if len(tokens) != 2 or tokens[0] != "ready":
             raise WorkerError(f"worker {self.name} did not start properly: {tokens[:5]}")
         return int(tokens[1])
@@ -107,23 +107,32 @@ class Worker:
             parts.append(f"{array.size}\n" + " ".join(map(repr, array.tolist())))
         self._write(("\n".join(parts) + "\n").encode())
 
-    def send_output(self, prefix, shift=(0.0, 0.0)):
-        """Ask for the fields under ``prefix``, the body's coordinates shifted by
-        ``shift`` (the scene's place of a body whose mesh the worker read at another)."""
+    def send_output(self, prefix, shift=(0.0, 0.0), fields=True):
+        """Ask for the output files under ``prefix``: the fields (unless not ``fields``),
+        the body's coordinates shifted by ``shift`` (the scene's place of a body whose
+        mesh the worker read at another), and a body's reactions."""
         if "\n" in prefix:
             raise ValueError(f"an output path cannot hold a line break: {prefix!r}")
-        self._write(f"{CMD_OUTPUT}\n{float(shift[0])!r} {float(shift[1])!r}\n{prefix}\n".encode())
+        self._write(f"{CMD_OUTPUT}\n{float(shift[0])!r} {float(shift[1])!r} {int(fields)}\n"
+                    f"{prefix}\n".encode())
 
     def receive_arrays(self, count):
         """Read a reply made of ``count`` count-first arrays."""
-        tokens = self._read_reply()
+        reply = self._read_reply()
+        try:            # every number at once: a map's reply holds tens of thousands
+            values = np.fromstring(reply, sep=" ")
+        except ValueError:
+            raise WorkerError(f"worker {self.name} sent a reply that is not numbers: "
+                              f"{reply[:200]!r}") from None
         arrays, i = [], 0
         for _ in range(count):
-            n = int(tokens[i])
-            arrays.append(np.array(tokens[i + 1:i + 1 + n], dtype=float))
+            if i >= len(values):
+                raise WorkerError(f"worker {self.name} sent {len(arrays)} of {count} arrays")
+            n = int(values[i])
+            arrays.append(values[i + 1:i + 1 + n])
             i += 1 + n
-        if i != len(tokens):
-            raise WorkerError(f"worker {self.name} sent {len(tokens) - i} unexpected values")
+        if i != len(values):
+            raise WorkerError(f"worker {self.name} sent {len(values) - i} unexpected values")
         return arrays
 
     def request(self, command, arrays, reply_arrays):
@@ -184,7 +193,7 @@ class Worker:
                 raise WorkerError(f"worker {self.name} stopped reading its requests")
 
     def _read_reply(self):
-        """Read until the reply's closing word "end"; return the tokens before it."""
+        """Read until the reply's closing word "end"; return the bytes before it."""
         start = time.monotonic()
         chunks = []
         while True:
@@ -201,5 +210,5 @@ class Worker:
                                       f"{self.timeout:g} s (Settings.worker_timeout; a "
                                       "stopped or overloaded process?):\n"
                                       + freefem.log_tail(self.log_path))
-        tokens = b"".join(chunks).split()
-        return [t.decode() for t in tokens[:-1]]
+        reply = b"".join(chunks).rstrip()
+        return reply[:-len(b"end")]

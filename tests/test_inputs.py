@@ -46,6 +46,7 @@ def test_chi_is_refused_naming_itself():
     ({"element_size": 0.0}, "element_size"),
     ({"model_tolerance": 0.0}, "model_tolerance"), ({"model_tolerance": 1.5}, "model_tolerance"),
     ({"model_tolerance": float("nan")}, "model_tolerance"),
+    ({"body_fields": "no"}, "body_fields"), ({"body_fields": 0}, "body_fields"),
 ])
 def test_settings_refuse(values, parameter):
     with pytest.raises(ParameterError, match=rf"^{parameter} = "):
@@ -78,6 +79,14 @@ def test_command_line_refuses_before_any_work(flag, value, parameter, tmp_path):
     assert result.returncode == 2
     assert parameter in result.stderr
     assert not out.exists()
+
+
+def test_a_true_or_false_setting_is_a_flag_and_its_negation():
+    from orchestrate.cli import build_parser, scene_from_arguments
+    for flags, expected in (([], True), (["--no-body-fields"], False),
+                            (["--body-fields"], True)):
+        args = build_parser().parse_args(["solve", "--out", "x", *flags])
+        assert scene_from_arguments(args)[1].body_fields is expected
 
 
 def test_mesh_level_must_be_an_integer(tmp_path):

@@ -17,6 +17,7 @@ E2 = 5E, whose coating is one layer of P2 triangles under the edge of the contac
 * Figures 3-5 draw from a run.
 """
 
+import json
 import xml.etree.ElementTree as ElementTree
 from collections import defaultdict
 
@@ -31,6 +32,7 @@ from orchestrate.outputs import STRESS_COMPONENTS, write_shell_fields
 from orchestrate.paraview import RUN_COLLECTION, write_collection, write_sweep_collection
 from orchestrate.scene import Settings
 from orchestrate.scene_file import paper_scene
+from orchestrate.solve import solve
 
 BODIES = ("indenter", "base", "coating1")
 FIELDS = ("sigma_eq",) + STRESS_COMPONENTS
@@ -199,6 +201,29 @@ def test_run_pvd_lists_every_subdomain_vtu(run):
     assert sorted(files) == sorted(f"{body}.vtu" for body in BODIES)      # relative paths
     assert all((run / name).is_file() for name in files)
     assert sorted(int(d.get("part")) for d in datasets) == [0, 1, 2]
+
+
+def test_a_run_without_body_fields_has_the_same_answers_and_the_bodies_reactions(run,
+                                                                                  tmp_path):
+    """Settings.body_fields = False (the figures' sweep): no nodal files of the indenter
+    and the base, their reactions still, the coating's fields, and the summary's numbers
+    of the run with them (to rounding: two runs of one scene differ by 1e-13 or so, the
+    sums of a multi-threaded BLAS in no fixed order)."""
+    folder = tmp_path / "run"
+    solve(paper_scene(h2=0.125, E2=5.0, model="elastic"), Settings(body_fields=False),
+          str(folder))
+    for body in ("indenter", "base"):
+        assert not list(folder.glob(f"{body}.*")) and not list(folder.glob(f"{body}_cells*"))
+        reactions = [np.loadtxt(f / f"{body}_reactions.txt") for f in (folder, run)]
+        assert np.allclose(*reactions, rtol=1e-9, atol=1e-9 * np.abs(reactions[1]).max())
+    assert (folder / "coating1.csv").is_file() and (folder / "coating1.vtu").is_file()
+    listed = [d.get("file") for d in ElementTree.parse(folder / RUN_COLLECTION).iter("DataSet")]
+    assert listed == ["coating1.vtu"]
+    without, with_fields = (json.loads((f / "summary.json").read_text()) for f in (folder, run))
+    assert without["iterations"] == with_fields["iterations"]
+    for key in ("total_force", "stamp_reaction", "base_reaction", "peak_contact_stress",
+                "peak_interface_stress", "contact_half_width"):
+        assert without[key] == pytest.approx(with_fields[key], rel=1e-9), key
 
 
 def test_a_shell_vtu_has_the_fibre_stresses_of_its_faces(tmp_path):

@@ -1,40 +1,79 @@
 """The paper's claims about its figures 3-5 (METHOD.md), checked on our runs.
 
 Every figure scene is solved (24 runs, both coating models, the default paper meshes)
-and each claim becomes an assertion on the computed data: an ordering, a trend, the
-place of a maximum (orchestrate/claims.py measures them). Where our data contradict a
-claim, the test asserts what the data show and says why; README, "The paper's claims",
-gives the numbers."""
+by what `make fig3 fig4 fig5` runs, which draws the three figures too, and each claim
+becomes an assertion on the computed data: an ordering, a trend, the place of a maximum
+(orchestrate/claims.py measures them). Where our data contradict a claim, the test
+asserts what the data show and says why; README, "The paper's claims", gives the
+numbers."""
 
-from concurrent.futures import ProcessPoolExecutor
 import itertools
+import json
 import subprocess
+import sys
 
+import pandas as pd
 import pytest
 
 from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
+from orchestrate.figure_sweep import figure_runs, ready_figures
 from orchestrate.figures import FIGURE_HEIGHTS, FIGURE_SCENES
 from orchestrate.paths import FIGURE_SWEEP
-from orchestrate.scene import Settings
-from orchestrate.scene_file import paper_scene
-from orchestrate.solve import solve
 from tests.conftest import PROJECT_DIR
 
 HEIGHTS = FIGURE_HEIGHTS
 
 
-def _solve(arguments):
-    model, h2, E2, folder = arguments
-    solve(paper_scene(h2=h2, E2=E2, model=model), Settings(), folder)
-    return folder
+@pytest.fixture(scope="module")
+def figures(tmp_path_factory):
+    """The folder `python -m orchestrate figures --out` filled: the figure sweep's runs
+    (figures/) and the three figures."""
+    out = tmp_path_factory.mktemp("figures")
+    done = subprocess.run([sys.executable, "-m", "orchestrate", "figures", "--out", str(out)],
+                          cwd=PROJECT_DIR, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    return out
 
 
 @pytest.fixture(scope="module")
-def runs(tmp_path_factory):
-    base = tmp_path_factory.mktemp("figure-scenes")
-    jobs = [(model, h2, E2, str(base / f"{model}-h2_{h2:g}-E2_{E2:g}")) for model, h2, E2 in FIGURE_SCENES]
-    with ProcessPoolExecutor(max_workers=2) as pool:
-        return Runs(list(pool.map(_solve, jobs)))
+def runs(figures):
+    return Runs([str(figures / "figures")])
+
+
+def test_the_figures_command_draws_the_three_figures_from_its_sweep(figures):
+    """Every figure whole (PNG, PDF, data), drawn beside the sweep; nothing partial."""
+    for name in ("fig3", "fig4", "fig5"):
+        assert (figures / f"{name}.png").stat().st_size > 10_000
+        assert (figures / f"{name}.pdf").read_bytes().rstrip().endswith(b"%%EOF")
+        assert (figures / f"{name}_data.csv").is_file()
+    assert not list(figures.glob("*partial*"))
+    assert (figures / "figures" / "runs.csv").is_file()
+    curves = {name: pd.read_csv(figures / f"{name}_data.csv") for name in ("fig3", "fig4")}
+    assert curves["fig3"].groupby(["h2", "E2", "model"]).ngroups == 8
+    assert curves["fig4"].groupby(["h2", "E2", "model"]).ngroups == 20
+    assert pd.read_csv(figures / "fig5_data.csv").groupby(["h2", "E2"]).ngroups == 12
+
+
+def test_a_figure_is_drawn_once_the_runs_it_draws_have_converged(tmp_path):
+    """fig. 5 draws the 2D coating's runs alone, which the sweep file lists first: it is
+    drawn while the shell's run; a run that did not converge keeps its figures out."""
+    runs = figure_runs(FIGURE_SWEEP, tmp_path)
+    assert len(runs["fig5"]) == 14 and len(runs["fig3"]) == len(runs["fig4"]) == 24
+    assert runs["fig3"][:14] == runs["fig5"]
+
+    def finish(folder, status):
+        folder.mkdir(parents=True)
+        (folder / "summary.json").write_text(json.dumps({"status": status}))
+    for folder in runs["fig5"][:-1]:
+        finish(folder, "converged")
+    assert ready_figures(runs, {}) == []
+    finish(runs["fig5"][-1], "converged")
+    assert ready_figures(runs, {}) == ["fig5"]
+    assert ready_figures(runs, {"fig5": "drawing"}) == []
+    for folder in runs["fig3"][14:-1]:
+        finish(folder, "converged")
+    finish(runs["fig3"][-1], "stagnated")
+    assert ready_figures(runs, {"fig5": "drawing"}) == []
 
 
 def test_make_draws_the_figures_from_the_one_list_of_scenes():
