@@ -3,15 +3,15 @@ with a coarse-mesh correction, against the plain iterated loop and the monolithi
 (not a test).
 
 1. Scenes: the paper's (2D coating, b/8, 5E) at mesh levels 1-3 and the example scenes,
-   each solved with inner_solve = "iterate", "direct" and (mesh level >= 2)
-   "two-level" (Settings), with what "auto" chooses, and the paper's scene by the
-   monolithic solve: wall time, iterations, the peak contact stress's largest
-   difference from the plain loop's, the time to an answer against the monolithic
-   solve's.
+   each solved with inner_solve = "iterate", "direct" and "two-level" (Settings), with
+   what "auto" chooses, and the paper's scene by the monolithic solve: wall time,
+   iterations, the peak contact stress's largest difference from the plain loop's, the
+   time to an answer against the monolithic solve's.
 2. The figure scenes one after another in one Session (workers kept; no warm start), at
    mesh levels 1-3, default settings: iterations (contact sets, where solved directly,
    as at level 1; Robin iterations with two levels, as finer) per scene, their median
-   and maximum, and their growth from level to level.
+   and maximum; and like for like, two levels at level 1 too (its coarse interfaces'
+   elements twice as long): the growth of the Robin iterations from level to level.
 
     python -m orchestrate.bench_direct     # prints the tables, writes results/direct*.csv
 """
@@ -54,7 +54,7 @@ def both_ways(out):
     rows = []
     for name, scene, settings in scenes():
         row = {"scene": name, "mesh_level": settings.mesh_level}
-        ways = WAYS if settings.mesh_level > 1 else WAYS[:2]
+        ways = WAYS
         for way in ways + ("auto",):
             summary = solve(scene, dataclasses.replace(settings, inner_solve=way),
                             os.path.join(out, f"{name}-{way}"))
@@ -77,12 +77,12 @@ def both_ways(out):
     return pd.DataFrame(rows)
 
 
-def figure_scenes(level):
+def figure_scenes(level, inner_solve="auto"):
     """A row per figure scene, solved one after the other in one Session at ``level``."""
-    points = [(name, {**values, "mesh_level": level})
+    points = [(name, {**values, "mesh_level": level, "inner_solve": inner_solve})
               for name, values in named_points(load_sweep(SWEEP)[1])]
     with Session() as session:
-        return one_by_one(points, session).assign(mesh_level=level)
+        return one_by_one(points, session).assign(mesh_level=level, inner_solve=inner_solve)
 
 
 def main(argv=None):
@@ -91,15 +91,21 @@ def main(argv=None):
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory() as out:
         table = both_ways(out)
-        figures = pd.concat([figure_scenes(level) for level in LEVELS], ignore_index=True)
+        figures = pd.concat([figure_scenes(level) for level in LEVELS]
+                            + [figure_scenes(1, "two-level")], ignore_index=True)
     with pd.option_context("display.width", 220):
         print(table.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
-    counts = figures.groupby("mesh_level").agg(
+    counts = figures.groupby(["inner_solve", "mesh_level"]).agg(
         median=("iterations", "median"), maximum=("iterations", "max"),
         direct=("inner_solve_used", lambda used: int((used == "direct").sum())),
         two_level=("inner_solve_used", lambda used: int((used == "two-level").sum())),
         scenes=("scene", "size"), wall_s=("wall_s", "sum"))
-    counts["median_growth"] = counts["median"].pct_change()
+    # like for like: two levels' Robin iterations at every level, against level 1's
+    two_level = figures[figures.inner_solve_used == "two-level"].groupby("mesh_level")
+    growth = two_level["iterations"].median() / two_level["iterations"].median().loc[1] - 1
+    counts["two_level_median_growth_from_level_1"] = [
+        growth.get(level) if used == "two-level" or level > 1 else None
+        for used, level in counts.index]
     print("\nfigure scenes in one session, iterations per scene:\n" + counts.to_string())
     os.makedirs(args.out, exist_ok=True)
     table.to_csv(os.path.join(args.out, "direct.csv"), index=False)

@@ -41,8 +41,9 @@ _SETTINGS_HELP = {
     "method": "Robin loop: accelerated active-set loop, or the paper's fixed relaxation",
     "inner_solve": "active-set loop: each contact set's fixed point solved directly from "
                    "the subdomains' Robin maps, iterated, iterated with a coarse-mesh "
-                   "correction (mesh level >= 2), or auto: direct where the maps cost "
-                   "less, else two-level on a fine mesh",
+                   "correction (mesh level 1; on level 1, interface elements twice as "
+                   "long), or auto: direct where the maps cost less, else two-level on a "
+                   "fine mesh",
     "robin": "Robin parameter gamma (E/b); default 1/theta for the paper's loop, else 2",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "

@@ -1,8 +1,9 @@
 """A coarse-mesh correction of the Robin loop on a fine mesh (two levels).
 
 The loop's slow modes, those of its Robin map's eigenvalues near 1, are smooth along the
-interfaces, and a coarse mesh sees them. The same scene at mesh level 1, with the fine
-run's penalty and Robin parameter, has an interface system small enough to probe and
+interfaces, and a coarse mesh sees them. The same scene at mesh level 1 (for a run on
+level 1 itself: with interface elements twice as long), with the fine run's penalty and
+Robin parameter, has an interface system small enough to probe and
 solve directly (orchestrate/interface_system.py: x = A_c x + b_c for a frozen contact
 set, A_c = S L). Interpolated along the interfaces (P: coarse state to fine, R: fine to
 coarse), it serves twice:
@@ -41,17 +42,19 @@ COARSE_NEWTON_STEPS = 50
 
 
 class CoarseLevel:
-    """The coarse level of a fine run's ``problem`` (mesh level >= 2): the scene at mesh
-    level 1 with the fine penalty and Robin parameter. Its workers start, and are asked
-    for their maps, at once; they probe while the fine run meshes and starts its own, and
-    ``correction`` collects the maps and stops them. ``paired``: whether the two levels'
-    interfaces pair up along s (else there is no correction)."""
+    """The coarse level of a fine run's ``problem``: the scene at mesh level 1 (on level
+    1 itself, with interface elements twice as long: coarse_element_size) with the fine
+    penalty and Robin parameter. Its workers start, and are asked for their maps, at
+    once; they probe while the fine run meshes and starts its own, and ``correction``
+    collects the maps and stops them. ``paired``: whether the two levels' interfaces
+    pair up along s (else there is no correction)."""
 
     def __init__(self, problem):
         settings = problem.settings
         coarse_settings = dataclasses.replace(settings, mesh_level=1, theta=settings.theta,
                                               robin=settings.robin_parameter,
-                                              inner_solve="direct")
+                                              inner_solve="direct",
+                                              element_size=coarse_element_size(settings))
         self.fine_layout = StateLayout(problem.interfaces)
         self.coarse = discretize(problem.scene, coarse_settings)
         self.layout = StateLayout(self.coarse.interfaces)
@@ -102,6 +105,12 @@ class CoarseLevel:
 
     def __exit__(self, *exc):
         self.close()
+
+
+def coarse_element_size(settings):
+    """The coarse level's element length at mesh level 1: the fine one's at mesh level 1,
+    twice it when the fine run is at mesh level 1 itself."""
+    return settings.element_size * (2.0 if settings.mesh_level == 1 else 1.0)
 
 
 def _coarse_laws(coarse, layout, psi):

@@ -379,7 +379,9 @@ class Settings:
     inner_solve: str = "auto"      # active-set loop, each contact set's fixed point:
                                    # "direct" from the subdomains' Robin maps, "iterate"
                                    # (Anderson), "two-level" (Anderson with a coarse
-                                   # correction, mesh levels >= 2), "auto": direct where
+                                   # correction: the scene at mesh level 1; on level 1
+                                   # itself, with interface elements twice as long),
+                                   # "auto": direct where
                                    # the maps cost less, else two-level, else iterate
     robin: Optional[float] = None  # Robin parameter gamma, E/b; None: 1/theta (paper), 2
     rho: float = 0.5               # relaxation (24), in (0, 1]
@@ -406,9 +408,6 @@ class Settings:
         _require(not (self.method == "paper" and self.inner_solve == "two-level"),
                  "inner_solve", "inner_solve = 'two-level' needs method = 'active-set': "
                  "the paper's loop is not accelerated")
-        _require(not (self.mesh_level == 1 and self.inner_solve == "two-level"), "inner_solve",
-                 "inner_solve = 'two-level' needs mesh_level >= 2: its coarse level is "
-                 "mesh level 1")
         _require(not (self.workers == "fresh" and self.inner_solve == "direct"), "inner_solve",
                  "inner_solve = 'direct' needs workers = 'persistent': a fresh process per "
                  "solve keeps no factorisation to probe the maps with")
@@ -456,8 +455,8 @@ class Settings:
         """Whether a run iterates with a coarse correction (orchestrate/coarse.py; unless
         its interfaces do not pair up with the coarse mesh's): its coarse level starts
         with the run, and its workers probe no map (orchestrate/subdomains.py)."""
-        return (self.method != "paper" and self.mesh_level > 1
-                and self.inner_solve in ("auto", "two-level"))
+        return self.method != "paper" and (
+            self.inner_solve == "two-level" or (self.inner_solve == "auto" and self.mesh_level > 1))
 
     @property
     def robin_parameter(self):
