@@ -2,9 +2,9 @@
 scenes into results/figures/, each figure drawn as soon as the runs it draws have
 converged, by a drawing process beside the sweep.
 
-The sweep file (orchestrate/sweeps/figures.toml) lists the 2D coating's scenes first:
-fig. 5 draws them alone, and takes the longest to draw (twice figs. 3 and 4 together),
-so it is drawn while the shell's runs go on; figs. 3 and 4 follow the last run. The
+The sweep file (orchestrate/sweeps/figures.toml) lists fig. 5's scenes first: it takes
+the longest to draw (twice figs. 3 and 4 together), so it is drawn while the other runs
+go on; figs. 3 and 4 follow the last run. The
 sweep's own process imports no plotting library: it only waits for the runs.
 """
 
@@ -16,16 +16,23 @@ from pathlib import Path
 
 from .sweep import kill_pool, load_sweep, named_points, run_status
 
-# The coating models whose runs each figure draws (orchestrate/figures.py).
-DRAWS = {"fig3": ("shell", "elastic"), "fig4": ("shell", "elastic"), "fig5": ("elastic",)}
+# The runs each figure draws, by their values (orchestrate/figures.py draws its panels
+# and curves from these): fig. 3 panels h2, curves E2; fig. 4 panels E2, curves h2;
+# fig. 5 columns E2, rows h2.
+DRAWS = {
+    "fig3": {"model": ("shell", "elastic"), "h2": (1.0, 0.125), "E2": (5.0, 1.0)},
+    "fig4": {"model": ("shell", "elastic"), "h2": (1.0, 0.5, 0.25, 0.125, 0.0625),
+             "E2": (5.0, 1.0)},
+    "fig5": {"model": ("elastic",), "h2": (1.0, 0.5, 0.25, 0.125), "E2": (0.2, 1.0, 5.0)},
+}
 
 
 def figure_runs(sweep_file, sweep_dir):
     """{figure: the run folders it draws} of the sweep file run into ``sweep_dir``."""
     points = named_points(load_sweep(sweep_file)[1])
     return {figure: [Path(sweep_dir) / "runs" / name for name, values in points
-                     if values["model"] in models]
-            for figure, models in DRAWS.items()}
+                     if all(values[key] in allowed for key, allowed in draws.items())]
+            for figure, draws in DRAWS.items()}
 
 
 def ready_figures(runs, drawn):
@@ -50,9 +57,12 @@ def _draw(names, folders, out_dir):
 
 class FigureDrawing:
     """Draws the figures of the sweep file ``sweep_file``, run into ``sweep_dir``, into
-    ``out_dir``: ``run_done`` after every run (and once before the first) submits each
-    figure whose runs have all converged; ``finish`` waits for the drawings and returns
-    the PNG paths. A drawing process of its own, killed on ``close`` if still busy."""
+    ``out_dir``, in a drawing process of its own: ``run_done`` after every run (and once
+    before the first) hands it the figures whose runs have all converged, ``finish``
+    waits for the drawings and returns the PNG paths; ``close`` kills the process. The
+    process draws one batch at a time, the figures of a batch side by side
+    (orchestrate/figures.py's draw): those that become ready while it draws wait, and go
+    together in the next."""
 
     def __init__(self, sweep_file, sweep_dir, out_dir):
         self.runs = figure_runs(sweep_file, sweep_dir)
@@ -60,26 +70,34 @@ class FigureDrawing:
         self.pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"),
                                         initializer=_start_drawing, initargs=(os.getpid(),))
         self.pool.submit(int)              # the process starts now, not at the first figure
-        self.drawings = {}
+        self.drawings = {}                 # figure: the future of its batch, or None: waiting
+        self.batches = []
 
     def run_done(self, name=None):
-        ready = ready_figures(self.runs, self.drawings)
-        if ready:              # figures ready together are drawn together, side by side
-            future = self.pool.submit(_draw, ready, sorted({str(folder) for figure in ready
-                                                            for folder in self.runs[figure]}),
-                                      self.out_dir)
-            self.drawings.update((figure, future) for figure in ready)
+        self.drawings.update((figure, None) for figure in ready_figures(self.runs, self.drawings))
+        if not self.batches or self.batches[-1].done():
+            self._draw_waiting()
+
+    def _draw_waiting(self):
+        waiting = [figure for figure, future in self.drawings.items() if future is None]
+        if waiting:
+            folders = sorted({str(folder) for figure in waiting for folder in self.runs[figure]})
+            self.batches.append(self.pool.submit(_draw, waiting, folders, self.out_dir))
+            self.drawings.update((figure, self.batches[-1]) for figure in waiting)
 
     def finish(self):
         """The PNG paths of the figures drawn, once all are; raises if a drawing failed."""
-        return [path for future in dict.fromkeys(self.drawings.values())
-                for path in future.result()]
+        paths = []
+        while self.batches:
+            paths += self.batches.pop(0).result()
+            if not self.batches:
+                self._draw_waiting()
+        return paths
 
     def close(self):
-        if all(future.done() for future in self.drawings.values()):
-            self.pool.shutdown()
-        else:
-            kill_pool(self.pool)
+        """Kill the drawing process, busy or not: what it was writing has its partial
+        name (never taken for whole), and an idle one takes half a second to exit."""
+        kill_pool(self.pool)
 
     def __enter__(self):
         return self

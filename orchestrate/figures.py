@@ -34,6 +34,7 @@ import pandas as pd  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
+from .figure_sweep import DRAWS  # noqa: E402
 from .outputs import partial_path, written  # noqa: E402
 from .paths import FIGURE_SWEEP, RESULTS_DIR  # noqa: E402
 from .scene import scene_from_dict  # noqa: E402
@@ -187,14 +188,15 @@ def _stress_curves(runs, file, panel_key, panel_values, curve_key, curve_values,
 
 
 def fig3(runs, out_dir):
-    figure, data = _stress_curves(runs, "contact.csv", "h2", [1.0, 0.125], "E2", [5.0, 1.0],
+    draws = DRAWS["fig3"]
+    figure, data = _stress_curves(runs, "contact.csv", "h2", draws["h2"], "E2", draws["E2"],
                                   rf"$\sigma_{{12n}}$ / ({UNIT_LABEL}) on $S_{{12}}$", _label_E2)
     _save(figure, "fig3", data, out_dir)
 
 
 def fig4(runs, out_dir):
-    figure, data = _stress_curves(runs, "interface.csv", "E2", [5.0, 1.0], "h2",
-                                  [1.0, 0.5, 0.25, 0.125, 0.0625],
+    draws = DRAWS["fig4"]
+    figure, data = _stress_curves(runs, "interface.csv", "E2", draws["E2"], "h2", draws["h2"],
                                   rf"$\sigma_{{23n}}$ / ({UNIT_LABEL}) on $S_{{23}}$", _label_h2)
     _save(figure, "fig4", data, out_dir)
 
@@ -234,7 +236,7 @@ def p2_triangulation(x, y, cells, values, n=6):
 
 
 def fig5(runs, out_dir):
-    moduli, heights = [0.2, 1.0, 5.0], [1.0, 0.5, 0.25, 0.125]
+    moduli, heights = DRAWS["fig5"]["E2"], DRAWS["fig5"]["h2"]
     # a fixed layout: the panels are alike, and laying them out would cost a third draw;
     # titles at the axes' top (where matplotlib would put them: no decoration is above)
     with plt.rc_context({"axes.titley": 1.0}):

@@ -19,6 +19,7 @@ from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
 from orchestrate.figure_sweep import figure_runs, ready_figures
 from orchestrate.figures import FIGURE_HEIGHTS, FIGURE_SCENES
 from orchestrate.paths import FIGURE_SWEEP
+from orchestrate.sweep import load_sweep, named_points
 from tests.conftest import PROJECT_DIR
 
 HEIGHTS = FIGURE_HEIGHTS
@@ -55,14 +56,16 @@ def test_the_figures_command_draws_the_three_figures_from_its_sweep(figures):
 
 
 def test_a_figure_is_drawn_once_the_runs_it_draws_have_converged(tmp_path):
-    """fig. 5 draws the 2D coating's runs alone, which the sweep file lists first: it is
-    drawn while the shell's run; a run that did not converge keeps its figures out."""
+    """fig. 5's runs, which the sweep file lists first, make it ready while the others
+    run; a run that did not converge keeps its figures out."""
     runs = figure_runs(FIGURE_SWEEP, tmp_path)
-    assert len(runs["fig5"]) == 14 and len(runs["fig3"]) == len(runs["fig4"]) == 24
-    assert runs["fig3"][:14] == runs["fig5"]
+    assert (len(runs["fig3"]), len(runs["fig4"]), len(runs["fig5"])) == (8, 20, 12)
+    points = [name for name, _ in named_points(load_sweep(FIGURE_SWEEP)[1])]
+    assert [folder.name for folder in runs["fig5"]] == points[:12]
+    assert {folder.name for figure in runs for folder in runs[figure]} == set(points)
 
     def finish(folder, status):
-        folder.mkdir(parents=True)
+        folder.mkdir(parents=True, exist_ok=True)
         (folder / "summary.json").write_text(json.dumps({"status": status}))
     for folder in runs["fig5"][:-1]:
         finish(folder, "converged")
@@ -70,10 +73,12 @@ def test_a_figure_is_drawn_once_the_runs_it_draws_have_converged(tmp_path):
     finish(runs["fig5"][-1], "converged")
     assert ready_figures(runs, {}) == ["fig5"]
     assert ready_figures(runs, {"fig5": "drawing"}) == []
-    for folder in runs["fig3"][14:-1]:
+    for folder in runs["fig4"]:
         finish(folder, "converged")
     finish(runs["fig3"][-1], "stagnated")
     assert ready_figures(runs, {"fig5": "drawing"}) == []
+    finish(runs["fig3"][-1], "converged")
+    assert ready_figures(runs, {"fig5": "drawing"}) == ["fig3", "fig4"]
 
 
 def test_make_draws_the_figures_from_the_one_list_of_scenes():
