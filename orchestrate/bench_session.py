@@ -48,7 +48,9 @@ def one_by_one(points, session):
 
 def sweep_seconds(points, out):
     """Wall seconds of a sweep like the figures' (warm starts, 2 jobs) of ``points``."""
-    def value(v):
+    def value(v):                              # in TOML
+        if isinstance(v, bool):
+            return "true" if v else "false"
         return f'"{v}"' if isinstance(v, str) else repr(v)
     runs = "".join("[[runs]]\n" + "".join(f"{key} = {value(v)}\n" for key, v in values.items())
                    for _, values in points)
