@@ -19,22 +19,23 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 .DELETE_ON_ERROR:
 
 # ---- The paper's figures: every scene listed once, in a sweep file ---------------------
-# One process runs the sweep of the figures' scenes into results/figures/runs/ (runs.csv
-# is written last; a rerun skips finished runs), then draws the three figures, each
-# taking the runs it needs. A form or solver source edited since runs.csv was written
+# One command runs the sweep of the figures' scenes into results/figures/runs/ (runs.csv
+# is written last; a rerun skips finished runs) and draws each figure as soon as the runs
+# it needs are done. A form or solver source edited since runs.csv was written
 # makes the runs stale: they are removed and solved again (so are the runs of a sweep
 # that never wrote its table: nothing says which code solved them).
 FIGURE_SWEEP := orchestrate/sweeps/figures.toml
 FIGURE_RUNS := results/figures/runs.csv
+DRAWING_SOURCES := orchestrate/figures.py orchestrate/figure_scenes.py orchestrate/figure_sweep.py
 SOLVER_SOURCES := $(wildcard freefem/*.idp freefem/*.edp) \
-                  $(filter-out orchestrate/figures.py,$(wildcard orchestrate/*.py))
+                  $(filter-out $(DRAWING_SOURCES),$(wildcard orchestrate/*.py))
 
 FIGURES := results/fig3.png results/fig4.png results/fig5.png
 
 figures: fig3 fig4 fig5
 fig3 fig4 fig5: $(FIGURES) ; @:
 
-$(FIGURE_RUNS) $(FIGURES) &: $(FIGURE_SWEEP) $(SOLVER_SOURCES) orchestrate/figures.py | setup
+$(FIGURE_RUNS) $(FIGURES) &: $(FIGURE_SWEEP) $(SOLVER_SOURCES) $(DRAWING_SOURCES) | setup
 	@if [ ! -f $(FIGURE_RUNS) ] || [ -n "$$(find $(SOLVER_SOURCES) -newer $(FIGURE_RUNS))" ]; \
 	  then rm -rf results/figures/runs; fi
 	$(PYTHON) -m orchestrate figures

@@ -29,7 +29,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from .claims import distance  # noqa: E402
-from .figures import FIGURE_SCENES  # noqa: E402
+from .figure_scenes import FIGURE_SCENES  # noqa: E402
 from .monolithic import monolithic_curves  # noqa: E402
 from .paths import RESULTS_DIR  # noqa: E402
 from .reference import reference  # noqa: E402

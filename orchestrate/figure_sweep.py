@@ -14,18 +14,8 @@ import multiprocessing
 import os
 from pathlib import Path
 
+from .figure_scenes import DRAWS
 from .sweep import kill_pool, load_sweep, named_points, run_status
-
-# The runs each figure draws, by their values (orchestrate/figures.py draws its panels
-# and curves from these): fig. 3 panels h2, curves E2; fig. 4 panels E2, curves h2;
-# fig. 5 columns E2, rows h2.
-DRAWS = {
-    "fig3": {"model": ("shell", "elastic"), "h2": (1.0, 0.125), "E2": (5.0, 1.0)},
-    "fig4": {"model": ("shell", "elastic"), "h2": (1.0, 0.5, 0.25, 0.125, 0.0625),
-             "E2": (5.0, 1.0)},
-    "fig5": {"model": ("elastic",), "h2": (1.0, 0.5, 0.25, 0.125), "E2": (0.2, 1.0, 5.0)},
-}
-
 
 def figure_runs(sweep_file, sweep_dir):
     """{figure: the run folders it draws} of the sweep file run into ``sweep_dir``."""

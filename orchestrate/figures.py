@@ -4,7 +4,8 @@
     python -m orchestrate.figures fig3 results/figures    # every run of a sweep
 
 The scenes are listed once, in orchestrate/sweeps/figures.toml, which `make` runs as a
-sweep; each figure takes what it needs from the runs' summaries (model, h2, E2).
+sweep; each figure takes the runs orchestrate/figure_scenes.py's DRAWS names for it, by
+their summaries' values (model, h2, E2).
   fig3: sigma_12n/E on S12; panels h2 = b, b/8; curves E2 = 5E (1), E (2);
         solid: shell model, dashed: 2D coating model.
   fig4: sigma_23n/E on S23; panels E2 = 5E, E; curves h2 = b ... b/16; both models.
@@ -34,19 +35,12 @@ import pandas as pd  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
-from .figure_sweep import DRAWS  # noqa: E402
+from .figure_scenes import DRAWS  # noqa: E402
 from .outputs import partial_path, written  # noqa: E402
-from .paths import FIGURE_SWEEP, RESULTS_DIR  # noqa: E402
+from .paths import RESULTS_DIR  # noqa: E402
 from .scene import scene_from_dict  # noqa: E402
 from .scene_file import shorthand_values  # noqa: E402
-from .sweep import load_sweep  # noqa: E402
 from .worker import die_with_parent  # noqa: E402
-
-# Every scene the three figures need, (model, h2, E2), listed once: the sweep file that
-# `make fig3 fig4 fig5` runs (its runs land in results/figures/runs/).
-FIGURE_SCENES = sorted({(point["model"], point["h2"], point["E2"])
-                        for point in load_sweep(FIGURE_SWEEP)[1]})
-FIGURE_HEIGHTS = tuple(sorted({h2 for _, h2, _ in FIGURE_SCENES}, reverse=True))
 
 LINESTYLE = {"shell": "-", "elastic": "--"}
 STRESS_UNIT = 1e-4          # stresses are drawn in units of 1e-4 E

@@ -17,7 +17,7 @@ import tempfile
 
 import pandas as pd
 
-from .figures import FIGURE_SCENES
+from .figure_scenes import FIGURE_SCENES
 from .paths import RESULTS_DIR
 from .scene import Settings
 from .scene_file import paper_scene

@@ -16,7 +16,7 @@ import tempfile
 import pandas as pd
 
 from .bench import coating_length, errors
-from .figures import FIGURE_HEIGHTS
+from .figure_scenes import FIGURE_HEIGHTS
 from .paths import RESULTS_DIR
 from .reference import reference
 from .scene import Settings

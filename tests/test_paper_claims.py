@@ -17,7 +17,7 @@ import pytest
 
 from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
 from orchestrate.figure_sweep import figure_runs, ready_figures
-from orchestrate.figures import FIGURE_HEIGHTS, FIGURE_SCENES
+from orchestrate.figure_scenes import FIGURE_HEIGHTS, FIGURE_SCENES
 from orchestrate.paths import FIGURE_SWEEP
 from orchestrate.sweep import load_sweep, named_points
 from tests.conftest import PROJECT_DIR
