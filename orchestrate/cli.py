@@ -218,11 +218,10 @@ def _figures(args):
         status = _sweep(argparse.Namespace(file=FIGURE_SWEEP, out=runs, engine="local",
                                            jobs=args.jobs, scheduler=None, retry_failed=False),
                         drawing.run_done)
-        if status != EXIT_CONVERGED:
-            return status
-        for path in drawing.finish():
-            _say(path)
-    return EXIT_CONVERGED
+        if status in (EXIT_CONVERGED, EXIT_NOT_CONVERGED):   # the figures of converged runs
+            for path in drawing.finish():
+                _say(path)
+    return status
 
 
 def _sweep(args, run_done=lambda name=None: None):

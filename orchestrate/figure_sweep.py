@@ -4,8 +4,8 @@ converged, by a drawing process beside the sweep.
 
 The sweep file (orchestrate/sweeps/figures.toml) lists fig. 5's scenes first: it takes
 the longest to draw (twice figs. 3 and 4 together), so it is drawn while the other runs
-go on; figs. 3 and 4 follow the last run. The
-sweep's own process imports no plotting library: it only waits for the runs.
+go on; figs. 3 and 4 follow the last run. The sweep's own process imports no plotting
+library: it only waits for the runs.
 """
 
 from concurrent.futures import ProcessPoolExecutor
@@ -16,6 +16,7 @@ from pathlib import Path
 
 from .figure_scenes import DRAWS
 from .sweep import kill_pool, load_sweep, named_points, run_status
+
 
 def figure_runs(sweep_file, sweep_dir):
     """{figure: the run folders it draws} of the sweep file run into ``sweep_dir``."""
@@ -64,14 +65,16 @@ class FigureDrawing:
         self.batches = []
 
     def run_done(self, name=None):
-        self.drawings.update((figure, None) for figure in ready_figures(self.runs, self.drawings))
+        ready = ready_figures(self.runs, self.drawings)
+        self.drawings.update((figure, None) for figure in ready)
         if not self.batches or self.batches[-1].done():
             self._draw_waiting()
 
     def _draw_waiting(self):
         waiting = [figure for figure, future in self.drawings.items() if future is None]
         if waiting:
-            folders = sorted({str(folder) for figure in waiting for folder in self.runs[figure]})
+            folders = sorted({str(folder) for figure in waiting
+                              for folder in self.runs[figure]})
             self.batches.append(self.pool.submit(_draw, waiting, folders, self.out_dir))
             self.drawings.update((figure, self.batches[-1]) for figure in waiting)
 

@@ -9,6 +9,7 @@ numbers."""
 
 import itertools
 import json
+import shutil
 import subprocess
 import sys
 
@@ -53,6 +54,21 @@ def test_the_figures_command_draws_the_three_figures_from_its_sweep(figures):
     assert curves["fig3"].groupby(["h2", "E2", "model"]).ngroups == 8
     assert curves["fig4"].groupby(["h2", "E2", "model"]).ngroups == 20
     assert pd.read_csv(figures / "fig5_data.csv").groupby(["h2", "E2"]).ngroups == 12
+
+
+def test_a_run_that_did_not_converge_keeps_out_only_the_figures_that_draw_it(figures,
+                                                                             tmp_path):
+    """The figure sweep again on its finished runs, one of which (shell, b/2, 5E: fig. 4
+    alone draws it) stopped as stagnated: figs. 3 and 5 are drawn, fig. 4 is not, and
+    the command says that a run did not converge."""
+    shutil.copytree(figures / "figures" / "runs", tmp_path / "figures" / "runs")
+    summary = next((tmp_path / "figures" / "runs").glob("*model=shell_h2=0.5_E2=5")) / "summary.json"
+    report = json.loads(summary.read_text())
+    summary.write_text(json.dumps({**report, "status": "stagnated", "converged": False}))
+    done = subprocess.run([sys.executable, "-m", "orchestrate", "figures", "--out",
+                           str(tmp_path)], cwd=PROJECT_DIR, capture_output=True, text=True)
+    assert done.returncode == 1 and "1 stagnated" in done.stdout
+    assert sorted(path.name for path in tmp_path.glob("fig*.png")) == ["fig3.png", "fig5.png"]
 
 
 def test_a_figure_is_drawn_once_the_runs_it_draws_have_converged(tmp_path):
