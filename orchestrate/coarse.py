@@ -51,9 +51,11 @@ class CoarseLevel:
 
     def __init__(self, problem):
         settings = problem.settings
+        # probed and solved directly by persistent workers of its own, whatever the fine
+        # run's workers (a fresh process per solve keeps no factorisation to probe)
         coarse_settings = dataclasses.replace(settings, mesh_level=1, theta=settings.theta,
                                               robin=settings.robin_parameter,
-                                              inner_solve="direct",
+                                              inner_solve="direct", workers="persistent",
                                               element_size=coarse_element_size(settings))
         self.fine_layout = StateLayout(problem.interfaces)
         self.coarse = discretize(problem.scene, coarse_settings)
@@ -68,7 +70,7 @@ class CoarseLevel:
             session = self._resources.enter_context(Session())
             files = write_inputs(self.coarse, workdir)
             self.workers = self._resources.enter_context(
-                Subdomains(self.coarse, files, session, workdir, inner_solve="direct"))
+                Subdomains(self.coarse, files, session, workdir))
             self.workers.request_maps(self._data())
         except BaseException:
             self.close()

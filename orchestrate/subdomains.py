@@ -106,19 +106,21 @@ _FILE_ARGUMENTS = {"-mesh", "-nodes", "-sides"}
 class Subdomains:
     """Every subdomain of a run as a persistent FreeFEM worker, taken from ``session``.
 
-    ``use_maps``: a worker that serves its second scene gives its Robin-to-trace map
-    (robin_map.py), which stands in for its solves while the Robin coefficients are the
-    map's (the active-set loop's never change). ``inner_solve`` (Settings): with
+    For the active-set loop (problem.settings), a worker that serves its second scene
+    gives its Robin-to-trace map (robin_map.py), which stands in for its solves while the
+    Robin coefficients are the map's (that loop's never change). ``inner_solve``: with
     "direct", every new worker gives its map too, and with every map known the loop
     solves each contact set's fixed point directly (robin_maps); "auto" does so where
     the maps pay (_maps_pay); "iterate" never. On a mesh fine enough for two levels,
-    "auto" and "two-level" use no map at all."""
+    "auto" and "two-level" use no map at all, nor does a fresh process per solve."""
 
-    def __init__(self, problem, files, session, output_dir, use_maps=True, inner_solve="auto"):
+    def __init__(self, problem, files, session, output_dir):
         self.problem = problem
         self.session = session
-        self.use_maps = use_maps and (inner_solve == "direct"
-                                      or not problem.settings.two_levels)
+        settings = problem.settings
+        inner_solve = settings.inner_solve
+        self.use_maps = (settings.method != "paper" and settings.workers != "fresh"
+                         and (inner_solve == "direct" or not settings.two_levels))
         self.sides = {name: problem.sides_of(name) for name in problem.subdomains}
         self.components = {name: [problem.interfaces[i].components for i, _ in self.sides[name]]
                            for name in problem.subdomains}
@@ -313,7 +315,7 @@ class FreshProcessSubdomains(Subdomains):
     (``--workers fresh``); the answers are the same."""
 
     def __init__(self, *arguments):
-        super().__init__(*arguments, use_maps=False)
+        super().__init__(*arguments)
         self._drop()
         self.last_data = {}          # the data of each subdomain's last solve
 
@@ -343,5 +345,4 @@ def start_subdomains(problem, settings, files, session, output_dir):
     """The workers of a run: persistent (default) or a fresh process per solve."""
     if settings.workers == "fresh":
         return FreshProcessSubdomains(problem, files, session, output_dir)
-    return Subdomains(problem, files, session, output_dir, use_maps=settings.method != "paper",
-                      inner_solve=settings.inner_solve)
+    return Subdomains(problem, files, session, output_dir)

@@ -74,6 +74,15 @@ def test_the_coarse_workers_live_only_while_their_maps_are_probed():
     assert correction.first_state().shape == (StateLayout(problem.interfaces).size,)
 
 
+def test_a_fresh_process_run_takes_its_coarse_level_from_persistent_workers():
+    """The coarse level probes maps, which a fresh process per solve cannot give: it
+    has persistent workers of its own (--workers fresh at mesh level 2 was refused)."""
+    problem = discretize(paper_scene(h2=0.125, E2=5.0, model="shell"),
+                         Settings(mesh_level=2, workers="fresh"))
+    with CoarseLevel(problem) as level:
+        assert level.correction() is not None
+
+
 def test_a_coarse_level_left_unused_stops_its_probing_workers_at_once():
     """A run that solves directly after all closes its coarse level while the workers
     probe: they are killed (a probing worker would not hear a request to stop)."""
