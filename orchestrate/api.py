@@ -24,7 +24,7 @@ from . import solve as run
 from .errors import ParameterError
 from .folders import RunFolder
 from .scene import Scene, Settings
-from .scene_file import scene_and_settings
+from .scene_file import apply_overrides, scene_and_settings, settings_of
 
 TABLES = ("contact", "interface", "traces", "history")
 
@@ -57,13 +57,14 @@ class Result:
         return Path(out_dir)
 
 
-def _scene_and_settings(scene, settings):
-    """A Scene or a scene file's path; Settings, a dict of settings values or None (over
-    a file's [settings])."""
+def _scene_and_settings(scene, settings, overrides):
+    """A Scene or a scene file's path, with ``overrides`` (dotted keys or the paper's
+    shorthands, as flags and sweeps give them: scene_file.apply_overrides); Settings, a
+    dict of settings values or None (over a file's [settings])."""
     if isinstance(settings, Settings):
         if not isinstance(scene, Scene):
             scene, _ = scene_and_settings(scene)
-        return scene, settings
+        return apply_overrides(scene, overrides or {}), settings
     values = dict(settings or {})
     known = {f.name for f in fields(Settings)}
     for key in values:
@@ -71,8 +72,9 @@ def _scene_and_settings(scene, settings):
             raise ParameterError(f"settings: unknown setting {key!r} (known: "
                                  f"{', '.join(sorted(known))})", key)
     if isinstance(scene, Scene):
-        return scene, Settings(**values)
-    return scene_and_settings(scene, settings=values)
+        scene = apply_overrides(scene, overrides or {})
+        return scene, settings_of(values, scene.units)
+    return scene_and_settings(scene, overrides, settings=values)
 
 
 def _read(folder):
@@ -89,16 +91,20 @@ def _read(folder):
     return tables, fields, files
 
 
-def solve(scene, settings=None, progress=None, start_from=None, session=None):
+def solve(scene, settings=None, progress=None, start_from=None, session=None,
+          overrides=None):
     """Solve ``scene`` (a Scene, or the path of a scene file) with ``settings`` (Settings,
     a dict of setting values, or None: the defaults or the file's); return its Result.
+    ``overrides``: scene values over the scene's, as the command line's flags and sweeps
+    give them, e.g. ``{"h2": "20 um", "coating.E": "450 GPa", "load.force": 200}``
+    (values with a unit converted into the scene's units, orchestrate/units.py).
     ``start_from``: a finished run (a Result or a run folder) of a nearby scene, whose
     interface state starts the loop (orchestrate/warm_start.py): fewer iterations, the
     same answer. ``session``: a Session whose workers the scenes solved in it share
     where their bodies are the same (orchestrate/session.py). Raises as
     orchestrate/solve.py's solve does: ParameterError before any work, RunFailed (with
     the summary) if the loop does not converge, SystemFailure."""
-    scene, settings = _scene_and_settings(scene, settings)
+    scene, settings = _scene_and_settings(scene, settings, overrides)
     with tempfile.TemporaryDirectory(prefix="orchestrate-api-") as scratch:
         if isinstance(start_from, Result):       # its files, as a folder to read
             start_from = start_from.save(Path(scratch) / "start")

@@ -21,7 +21,7 @@ parameters of METHOD.md, kept as shorthands (``h2``, ``E2``, ``model``, ...; the
 SHORTHANDS), so that the paper's flags and sweep files keep working.
 """
 
-from dataclasses import fields
+from dataclasses import fields, is_dataclass
 import math
 from pathlib import Path
 import re
@@ -29,7 +29,7 @@ import tomllib
 
 from .paths import PACKAGE_DIR
 from .scene import (Base, Coating, Indenter, Load, ParameterError, Scene, Settings)
-from .units import units_from_table
+from .units import INVERSE_LENGTH, LENGTH, SCENE_KINDS, units_from_table, value_in_units
 
 SCENES_DIR = PACKAGE_DIR / "scenes"
 PAPER_SCENE_FILE = SCENES_DIR / "paper.toml"
@@ -74,9 +74,24 @@ def _check_keys(table, allowed, where, path):
                              where + unknown[0])
 
 
-def _build(cls, table, where, path):
+def _build(cls, table, where, path, units):
     _check_keys(table, [f.name for f in fields(cls)], where, path)
-    return cls(**table)
+    return cls(**in_units(table, where, units))
+
+
+def in_units(table, where, units):
+    """A table's values with every value that carries its own unit ("20 um") converted
+    into the scene's ``units`` (orchestrate/units.py); ``where``: the table's prefix in
+    keys, ``coating[2].``."""
+    kinds = SCENE_KINDS.get(re.sub(r"\[\d+\]", "", where).rstrip("."), {})
+    return {name: value_in_units(value, kinds[name], units, where + name) if name in kinds
+            else value for name, value in table.items()}
+
+
+def _zone_in_units(zone, units):
+    if not isinstance(zone, (list, tuple)):
+        return zone
+    return [value_in_units(z, LENGTH, units, "contact_zone") for z in zone]
 
 
 def scene_from_table(data, path=None):
@@ -90,15 +105,16 @@ def scene_from_table(data, path=None):
         coatings = data.get("coating", [])
         if not isinstance(coatings, list):
             raise ParameterError("coating must be an array of tables, [[coating]]", "coating")
+        units = units_from_table(data.get("units", {}), path)
         scene = Scene(
-            indenter=_build(Indenter, data["indenter"], "indenter.", path),
-            base=_build(Base, data["base"], "base.", path),
-            coatings=tuple(_build(Coating, c, f"coating[{i}].", path)
+            indenter=_build(Indenter, data["indenter"], "indenter.", path, units),
+            base=_build(Base, data["base"], "base.", path, units),
+            coatings=tuple(_build(Coating, c, f"coating[{i}].", path, units)
                            for i, c in enumerate(coatings, start=1)),
-            load=_build(Load, data["load"], "load.", path),
+            load=_build(Load, data["load"], "load.", path, units),
             symmetric=data.get("symmetric", True),
-            contact_zone=data.get("contact_zone"),
-            units=units_from_table(data.get("units", {}), path))
+            contact_zone=_zone_in_units(data.get("contact_zone"), units),
+            units=units)
     except ParameterError as error:
         if path and not str(error).startswith(f"{path}:"):
             raise ParameterError(f"{path}: {error}", error.key) from None
@@ -154,7 +170,10 @@ def is_scene_key(name):
 
 
 def _set(scene, key, value):
-    """The scene with one dotted key set (without validation)."""
+    """The scene with one dotted key set (without validation); a value with its own unit
+    ("20 um") is converted into the scene's units."""
+    if key == "contact_zone":
+        value = _zone_in_units(value, scene.units)
     if key in ("symmetric", "contact_zone"):
         return _copy(scene, **{key: value})
     match = _PATCH_KEY.match(key)
@@ -164,6 +183,7 @@ def _set(scene, key, value):
             raise ParameterError(f"{key}: the scene has {len(scene.coatings)} coating "
                                  "patch(es), counted from 1", key)
         _field_exists(Coating, name, key)
+        value = in_units({name: value}, f"coating[{number}].", scene.units)[name]
         coatings = list(scene.coatings)
         coatings[number - 1] = _copy(coatings[number - 1], **{name: value})
         return _copy(scene, coatings=tuple(coatings))
@@ -171,6 +191,7 @@ def _set(scene, key, value):
     if table not in _TABLES or not name:
         raise ParameterError(f"unknown scene key {key!r}", key)
     _field_exists(_TABLES[table], name, key)
+    value = in_units({name: value}, f"{table}.", scene.units)[name]
     if table == "coating":
         if not scene.coatings:
             raise ParameterError(f"{key}: the scene has no coating", key)
@@ -202,9 +223,18 @@ def _checked(part):
     return type(part)(**{f.name: getattr(part, f.name) for f in fields(part)})
 
 
+def _checked_field(value):
+    """A scene's field rebuilt with its checks: a part, a tuple of parts, or a plain
+    value."""
+    if isinstance(value, tuple):
+        return tuple(_checked_field(item) for item in value)
+    return _checked(value) if is_dataclass(value) else value
+
+
 def _shorthand_changes(name, value, scene):
     """Dotted keys and values a shorthand stands for."""
     if name == "chi":
+        value = value_in_units(value, INVERSE_LENGTH, scene.units, "chi")
         if not (isinstance(value, (int, float)) and value > 0):
             raise ParameterError(f"chi = {value!r} must be a positive number", "chi")
         return [("indenter.radius", 1.0 / (2.0 * value)), ("indenter.profile", "parabola")]
@@ -232,11 +262,9 @@ def apply_overrides(scene, overrides):
                              "or the stamp's descent", "load")
     if changed is scene:
         return scene
-    try:
-        return Scene(indenter=_checked(changed.indenter), base=_checked(changed.base),
-                     coatings=tuple(_checked(c) for c in changed.coatings),
-                     load=_checked(changed.load), symmetric=changed.symmetric,
-                     contact_zone=changed.contact_zone)
+    try:           # every field of the scene, its units and any added later, carried over
+        return Scene(**{f.name: _checked_field(getattr(changed, f.name))
+                        for f in fields(Scene)})
     except ParameterError as error:
         raise _named(error, set_by) from None
     except TypeError as error:
@@ -269,6 +297,21 @@ def shorthand_values(scene):
     return values
 
 
+# Settings in b that may be given as a length with its unit ("10 um"), converted by the
+# scene's b: the mesh's size is set in b (Settings.element_size), which only a scene knows.
+SETTINGS_LENGTHS = ("element_size",)
+
+
+def settings_of(values, units):
+    """Settings from a dict of values, a length setting with its own unit converted into
+    b by the scene's ``units``."""
+    values = dict(values)
+    for key in SETTINGS_LENGTHS:
+        if isinstance(values.get(key), str):
+            values[key] = value_in_units(values[key], LENGTH, units, key) / units.b
+    return Settings(**values)
+
+
 def scene_and_settings(path=None, overrides=None, settings=None):
     """The scene of a file (default: the paper's) with overrides, and the settings: the
     file's [settings] under the given values. Errors name the file and the key."""
@@ -276,7 +319,7 @@ def scene_and_settings(path=None, overrides=None, settings=None):
     scene = apply_overrides(scene, overrides or {})
     values = {**file_settings, **{k: v for k, v in (settings or {}).items() if v is not None}}
     try:
-        return scene, Settings(**values)
+        return scene, settings_of(values, scene.units)
     except ParameterError as error:
         if path and error.key in file_settings and (settings or {}).get(error.key) is None:
             raise ParameterError(f"{path}: settings.{error}", error.key) from None

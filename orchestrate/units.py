@@ -15,6 +15,14 @@ the run is written (express_run): the CSV columns, the reactions, the VTU fields
 summary, each scaled by its kind (KINDS: a registry by name; a name missing from it is a
 fault, so that no output can leave unscaled). Without [units] the scene is in b and E and
 nothing is scaled. The summary's "units" entry names the unit of every kind and column.
+
+Unit names are checked by pint (https://pint.readthedocs.io): ``length`` must name a unit
+of length, ``stress`` one of stress ("b" and "E" are the dimensionless default). A scene
+value may carry its own unit, ``E = "450 GPa"``, ``thickness = "20 um"``, ``force =
+"200 N/mm"`` (in a file, a --set or shorthand flag, a sweep value or an override from
+Python): it is converted into the file's units before the scene is built
+(``value_in_units``), and a unit of the wrong dimension or one pint does not know is
+refused, naming the key and what was due. pint is imported only where a unit is read.
 """
 
 from dataclasses import dataclass, fields, replace
@@ -29,6 +37,7 @@ from .errors import ParameterError
 from .outputs import write_csv, write_text, write_vtu
 
 LENGTH, STRESS, FORCE, MOMENT = "length", "stress", "force", "moment"
+INVERSE_LENGTH = "inverse length"      # the paper's chi, the face's curvature x^2 factor
 NUMBER, SECONDS, DEGREES, INDEX = "number", "seconds", "degrees", "index"  # not scaled
 
 # The scene's values by table and field: what is not listed is a number (Poisson ratios,
@@ -65,7 +74,7 @@ KINDS = {
         "active_set_changed", "active_set_update", "direct", "iterations", "final_relative_change",
         "active_set_changes", "tolerance", "patch", "estimated_error",
         "h2_over_a", "contact", "bond", "shell", "stretch_shell", "elastic",
-        "mesh_dependent", "converged")},
+        "mesh_dependent", "converged", "end_zone")},
     **{name: SECONDS for name in ("seconds", "wait", "wall_time_s", "setup_time_s",
                                   "time_per_iteration_s")},
     "normal_mismatch_deg": DEGREES,
@@ -75,24 +84,136 @@ TIMER_PREFIXES = ("cpu_", "back_")   # history.csv: seconds per subdomain (cpu_b
 # Summary entries kept as they are: the scene is written as given (in its units), the
 # settings are in b and E by definition, the rest are counts by subdomain or texts.
 SUMMARY_AS_IS = ("scene", "settings", "status", "reason", "dofs", "units", "not_estimated",
-                 "estimated_unknowns", "model", "started_from", "inner_solve_used")
+                 "estimated_unknowns", "model", "started_from", "inner_solve_used",
+                 "provenance", "warnings")     # warnings: texts and ratios (validity.py)
+
+
+# ---- unit names and values with units (pint) -------------------------------------------
+
+DIMENSIONLESS_NAMES = {LENGTH: "b", STRESS: "E"}    # the solver's own units
+# A kind's dimension as pint writes it, and how a person names it, with examples
+_DIMENSIONS = {
+    LENGTH: ("[length]", "a length", "mm, um, in"),
+    STRESS: ("[mass] / [length] / [time] ** 2", "a stress", "MPa, GPa, psi"),
+    FORCE: ("[mass] / [time] ** 2", "a force per unit width", "N/mm, kN/m"),
+    INVERSE_LENGTH: ("1 / [length]", "an inverse length", "1/mm"),
+}
+_DIMENSION_WORDS = {dimension: words for dimension, words, _ in _DIMENSIONS.values()}
+_DIMENSION_WORDS.update({"dimensionless": "a plain number",
+                         "[mass] * [length] / [time] ** 2": "a force, not per unit width "
+                         "(the scene is plane strain)",
+                         "[length] ** 2": "an area"})
+_registry = None
+
+
+def unit_registry():
+    """pint's registry, made once per process (it takes about 0.2 s)."""
+    global _registry
+    if _registry is None:
+        import pint
+        _registry = pint.UnitRegistry()
+    return _registry
+
+
+def _dimension_words(dimensionality):
+    text = str(dimensionality)
+    return _DIMENSION_WORDS.get(text, f"of dimension {text}")
+
+
+def _parsed(text, key, kind):
+    """pint's Quantity of ``text``; ParameterError naming ``key`` if it is not one (a
+    value of ``kind`` is due)."""
+    import pint
+    _, due, examples = _DIMENSIONS[kind]
+    try:
+        return unit_registry().Quantity(text.strip())
+    except pint.UndefinedUnitError as error:
+        names = getattr(error, "unit_names", None) or str(error)
+        names = ", ".join(map(repr, names)) if isinstance(names, (tuple, list)) else repr(names)
+        raise ParameterError(f"{key} = {text!r}: unknown unit {names} ({due} is due, e.g. "
+                             f"{examples}; unit names are case-sensitive)", key) from None
+    except Exception:      # pint's parser raises what its tokenizer meets (AssertionError...)
+        raise ParameterError(f"{key} = {text!r} is not a number with a unit ({due} is due, "
+                             f"e.g. \"{_EXAMPLES[kind]}\")", key) from None
+
+
+_EXAMPLES = {LENGTH: "20 um", STRESS: "450 GPa", FORCE: "200 N/mm", INVERSE_LENGTH: "0.01 1/mm"}
+
+
+def check_unit_name(name, kind, key):
+    """Refuse a unit name that pint does not know, or of another dimension than
+    ``kind`` (LENGTH, STRESS); the solver's own b and E pass as they are."""
+    if name == DIMENSIONLESS_NAMES[kind]:
+        return
+    dimension, due, examples = _DIMENSIONS[kind]
+    quantity = _parsed(name, key, kind)
+    if quantity.magnitude != 1:
+        raise ParameterError(f"{key} = {name!r} must be the name of a unit, without a "
+                             f"number (e.g. {examples})", key)
+    if not quantity.check(dimension):
+        raise ParameterError(f"{key} = {name!r} is {_dimension_words(quantity.dimensionality)}"
+                             f"; the name of a unit of {due.split(' ', 1)[1]} is due (e.g. "
+                             f"{examples})", key)
+
+
+def target_unit(units, kind):
+    """The unit, as pint reads it, in which a scene with ``units`` gives a value of
+    ``kind``; None where that kind is in the solver's b or E."""
+    if kind == STRESS:
+        return None if units.stress == "E" else units.stress
+    if units.length == "b":
+        return None
+    if kind == LENGTH:
+        return units.length
+    if kind == INVERSE_LENGTH:
+        return f"1 / ({units.length})"
+    if kind == FORCE:
+        return None if units.stress == "E" else f"({units.stress}) * ({units.length})"
+    raise ValueError(kind)
+
+
+def value_in_units(value, kind, units, key):
+    """A scene value in the scene's ``units``: numbers as they are (they are in those
+    units); a text, a number with its own unit ("20 um"), converted, its dimension
+    checked against ``kind``. ParameterError naming ``key`` otherwise."""
+    if not isinstance(value, str):
+        return value
+    dimension, due, _ = _DIMENSIONS[kind]
+    quantity = _parsed(value, key, kind)
+    if quantity.dimensionless:
+        return float(quantity.magnitude)       # "450": a number in the file's units
+    if not quantity.check(dimension):
+        raise ParameterError(f"{key} = {value!r} is {_dimension_words(quantity.dimensionality)}"
+                             f"; {due} is due (e.g. \"{_EXAMPLES[kind]}\")", key)
+    unit = target_unit(units, kind)
+    if unit is None:
+        solver_units = "stresses are in E" if kind == STRESS or units.length != "b" \
+            else "lengths are in b"
+        raise ParameterError(f"{key} = {value!r} has a unit, but the scene's {solver_units}: "
+                             "give the scene a [units] table (length, stress and b) or a "
+                             "plain number", key)
+    return float(quantity.to(unit).magnitude)
 
 
 @dataclass(frozen=True)
 class Units:
     """The units of a scene: the names of its length and stress units and b, the
-    solver's unit of length, in the length unit. The default is the dimensionless form."""
+    solver's unit of length, in the length unit (a number, or a length with its own
+    unit, "2.5 mm"). The default is the dimensionless form."""
 
     length: str = "b"
     stress: str = "E"
     b: float = 1.0
 
     def __post_init__(self):
-        for key in ("length", "stress"):
+        for key, kind in (("length", LENGTH), ("stress", STRESS)):
             value = getattr(self, key)
             if not isinstance(value, str) or not value.strip():
                 raise ParameterError(f"units.{key} = {value!r} must be the name of a unit, "
                                      'e.g. "mm" or "MPa"', f"units.{key}")
+            check_unit_name(value, kind, f"units.{key}")
+        if isinstance(self.b, str):
+            object.__setattr__(self, "b", value_in_units(self.b, LENGTH, self, "units.b"))
         if not (isinstance(self.b, (int, float)) and not isinstance(self.b, bool)
                 and math.isfinite(self.b) and self.b > 0):
             raise ParameterError(f"units.b = {self.b!r} must be a positive number: the "
