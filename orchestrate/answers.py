@@ -9,10 +9,15 @@
 
 Where a bonded coating ends, the elastic solution is singular (a bi-material wedge): the
 stresses there grow as the mesh refines and have no converged value. Every maximum is
-therefore taken twice: away from the patches' ends (farther than END_ZONE thicknesses,
-the values to design with) and within that distance ("at_patch_ends", marked
-mesh-dependent: they say where the stress concentrates, not how much). A half model's
-symmetry axis is no end.
+therefore taken twice: away from the patches' ends (the values to design with) and
+within their end zones ("at_patch_ends", marked mesh-dependent: they say where the
+stress concentrates, not how much); each says which it is ("end_zone": false or true).
+An end zone reaches END_ZONE thicknesses from the end, but at most END_ZONE_SHARE of
+the patch's length: a coating as thick as its patch is long (the paper's h2 = b on a
+patch of 2 b) keeps values away from its ends, and an end's zone never reaches the
+other end's, nor the symmetry axis of a half model, which is no end. The contact's
+peak pressure is split the same way: a peak at a patch end (the indenter pressing on
+the step of a patch's edge) is singular too.
 
 Computed in the solver's b and E, expressed in the scene's units with every output
 (orchestrate/units.py); compression is negative, tension positive.
@@ -22,29 +27,39 @@ import numpy as np
 
 END_ZONE = 2.0   # thicknesses from a patch's end: measured, the 2D model's peak there
                  # moved 11-42 % between meshes (orchestrate/model_errors.py)
+END_ZONE_SHARE = 0.25   # of the patch's length at most (the module's text)
 
 
-def near_patch_ends(scene, x1, thicknesses=END_ZONE):
-    """Which points x1 lie within ``thicknesses`` of some patch's end."""
+def end_zone_width(coating, thicknesses=END_ZONE, capped=True):
+    """How far from a patch's end its end zone reaches (``capped``: at most
+    END_ZONE_SHARE of its length)."""
+    width = thicknesses * coating.thickness
+    return min(width, END_ZONE_SHARE * (coating.end - coating.start)) if capped else width
+
+
+def near_patch_ends(scene, x1, thicknesses=END_ZONE, capped=True):
+    """Which points x1 lie in some patch's end zone (end_zone_width)."""
     near = np.zeros(len(x1), dtype=bool)
     for coating in scene.coatings:
+        width = end_zone_width(coating, thicknesses, capped)
         for end in scene.patch_ends(coating):
-            near |= np.abs(np.asarray(x1) - end) <= thicknesses * coating.thickness
+            near |= np.abs(np.asarray(x1) - end) <= width
     return near
 
 
 TENSION, COMPRESSION, MAGNITUDE = "tension", "compression", "magnitude"
 
 
-def _extreme(values, x1, x2, kind):
-    """{value, x1, x2} of the largest tension (> 0), compression (< 0) or magnitude;
-    None where there is none."""
+def _extreme(values, x1, x2, kind, end_zone):
+    """{value, x1, x2, end_zone} of the largest tension (> 0), compression (< 0) or
+    magnitude; None where there is none."""
     if len(values) == 0:
         return None
     i = int(np.argmin(values) if kind == COMPRESSION else np.argmax(values))
     if (kind == TENSION and values[i] <= 0) or (kind == COMPRESSION and values[i] >= 0):
         return None
-    return {"value": float(values[i]), "x1": float(x1[i]), "x2": float(x2[i])}
+    return {"value": float(values[i]), "x1": float(x1[i]), "x2": float(x2[i]),
+            "end_zone": end_zone}
 
 
 def _maxima(scene, quantities, x1, x2):
@@ -52,20 +67,22 @@ def _maxima(scene, quantities, x1, x2):
     apart, the one within their end zones (mesh-dependent)."""
     x1, x2 = np.asarray(x1), np.asarray(x2)
     near_end = near_patch_ends(scene, x1)
-    away = {name: _extreme(np.asarray(values)[~near_end], x1[~near_end], x2[~near_end], kind)
+    away = {name: _extreme(np.asarray(values)[~near_end], x1[~near_end], x2[~near_end], kind,
+                           False)
             for name, values, kind in quantities}
     if near_end.any():
         away["at_patch_ends"] = {
             "mesh_dependent": True,
-            **{name: _extreme(np.asarray(values)[near_end], x1[near_end], x2[near_end], kind)
+            **{name: _extreme(np.asarray(values)[near_end], x1[near_end], x2[near_end], kind,
+                              True)
                for name, values, kind in quantities}}
     return away
 
 
-def contact_answers(x1, x2, sigma_n):
-    """The peak contact pressure (positive) and its position."""
-    return {"peak_pressure": _extreme(-np.asarray(sigma_n), np.asarray(x1), np.asarray(x2),
-                                      TENSION)}
+def contact_answers(scene, x1, x2, sigma_n):
+    """The peak contact pressure (positive) and its position, away from the patches'
+    ends and, apart, within their end zones."""
+    return _maxima(scene, [("peak_pressure", -np.asarray(sigma_n), TENSION)], x1, x2)
 
 
 def bond_answers(scene, x1, x2, sigma_n, sigma_t):
@@ -110,18 +127,21 @@ def describe(answers, units):
     def where(extreme):
         return f"{extreme['value']:.4g} {stress} at x1 = {extreme['x1']:.4g} {length}"
     lines = []
-    peak = answers["contact"]["peak_pressure"]
-    if peak:
-        lines.append(f"peak contact pressure {where(peak)}")
-    for group in ("bonds", "coatings"):
-        for name, values in answers[group].items():
-            found = [f"{quantity.replace('_', ' ')} {where(extreme)}"
-                     for quantity, extreme in values.items()
-                     if quantity != "at_patch_ends" and extreme]
-            ends = [f"{quantity.replace('_', ' ')} {extreme['value']:.4g} {stress}"
+    for group, found in (("", {"contact": answers["contact"]}), ("bonds", answers["bonds"]),
+                         ("coatings", answers["coatings"])):
+        for name, values in found.items():
+            away = [f"{quantity.replace('_', ' ')} {where(extreme)}"
+                    for quantity, extreme in values.items()
+                    if quantity != "at_patch_ends" and extreme]
+            ends = [f"{quantity.replace('_', ' ')} {where(extreme)}"
                     for quantity, extreme in values.get("at_patch_ends", {}).items()
                     if quantity != "mesh_dependent" and extreme]
-            lines.append(f"{name}: " + ", ".join(found or ["no stress"])
-                         + (f"; at patch ends (singular, mesh-dependent): {', '.join(ends)}"
-                            if ends else ""))
+            if not away and not ends:
+                continue
+            if group == "bonds" and "peel" in values and not values["peel"] and not \
+                    values.get("at_patch_ends", {}).get("peel"):
+                away.insert(0, "no peel (in compression everywhere)")
+            lines.append(f"{name}: " + ", ".join(away or ["none away from the patch ends"])
+                         + (f"; in patch end zones (singular, mesh-dependent): "
+                            f"{', '.join(ends)}" if ends else ""))
     return lines

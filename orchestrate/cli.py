@@ -20,11 +20,11 @@ import traceback
 
 from .answers import describe
 from .errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT_INTERRUPTED,
-                     EXIT_NOT_CONVERGED,
+                     EXIT_NOT_CONVERGED, EXIT_WARNINGS,
                      EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure)
 from .freefem import FreeFemMissing
 from .scene import INNER_SOLVES, METHODS, MODEL_CHOICES, WORKERS, Settings
-from .scene_file import SHORTHANDS, scene_and_settings
+from .scene_file import SETTINGS_LENGTHS, SHORTHANDS, scene_and_settings
 
 EXIT_STATUSES = """exit status:
   0    converged
@@ -33,6 +33,7 @@ EXIT_STATUSES = """exit status:
        an output folder that is not free
   3    failed: a worker or a file (disk full, file size limit, permission), named
   4    internal error (a bug)
+  5    converged with warnings (the scene leaves what the tool models), under --strict
   130, 143, 129, 131   interrupted by SIGINT, SIGTERM, SIGHUP, SIGQUIT"""
 
 _SETTINGS_HELP = {
@@ -47,7 +48,8 @@ _SETTINGS_HELP = {
     "robin": "Robin parameter gamma (E/b); default 1/theta for the paper's loop, else 2",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
-    "L divides every mesh size by L", "element_size": "interface element length at level 1 (b)",
+    "L divides every mesh size by L", "element_size": "interface element length at level 1, in b, or a length with its "
+    "unit in a scene with [units] (\"10 um\")",
     "workers": "persistent FreeFEM workers, or a fresh process per solve (the naive baseline)",
     "worker_timeout": "seconds a worker may take to answer before the run fails",
     "memory_limit": "GiB the run may take (estimated before any work; default: 3/4 of the "
@@ -72,7 +74,7 @@ def _add_scene_options(parser):
     group.add_argument("--scene", help="scene file (TOML; default: the paper's scene, "
                                        "orchestrate/scenes/paper.toml)")
     for name, (meaning, keys) in SHORTHANDS.items():
-        kind = str if name == "model" else float
+        kind = str if name == "model" else number_or_quantity
         group.add_argument(_option(name), dest=name, type=kind, default=None,
                            choices=_CHOICES.get(name),
                            help=f"{meaning} (sets {', '.join(keys)})")
@@ -89,8 +91,19 @@ def _add_settings_options(parser):
                                action=argparse.BooleanOptionalAction)
             continue
         kind = float if f.default is None else type(f.default)
+        if f.name in SETTINGS_LENGTHS:
+            kind = number_or_quantity
         group.add_argument(_option(f.name), dest=f.name, type=kind, default=None,
                            choices=_CHOICES.get(f.name), help=text)
+
+
+def number_or_quantity(text):
+    """A flag's value: a number, or a number with its unit ("20 um"), which the scene
+    converts into its units (orchestrate/units.py)."""
+    try:
+        return float(text)
+    except ValueError:
+        return text
 
 
 def parse_assignment(text):
@@ -122,6 +135,9 @@ def build_parser():
     solve.add_argument("--overwrite", action="store_true",
                        help="replace an earlier run's output folder whole")
     solve.add_argument("--quiet", action="store_true", help="no progress lines")
+    solve.add_argument("--strict", action="store_true",
+                       help="exit with status 5 if the run has warnings (the scene leaves "
+                            "what the tool models: summary.json's warnings)")
     _add_scene_options(solve)
     _add_settings_options(solve)
     sweep = commands.add_parser(
@@ -130,9 +146,11 @@ def build_parser():
                     "format); finished runs are skipped, so an interrupted sweep resumes. "
                     "Writes one folder per run and runs.csv, one row per run.",
         epilog="exit status: 0 every run converged, 1 some did not, 2 refused before any "
-               "run, 4 an internal error, 130/143 interrupted")
+               "run, 4 an internal error, 5 every run converged but some have warnings "
+               "(with --strict), 130/143 interrupted")
     sweep.add_argument("file", help="sweep file (TOML)")
-    sweep.add_argument("--out", help="sweep folder (default results/<name>)")
+    sweep.add_argument("--out", help="sweep folder (default: results/<name> in the current "
+                                     "folder)")
     sweep.add_argument("--engine", choices=("local", "dask"), default="local",
                        help="local processes (default) or Dask distributed")
     sweep.add_argument("--jobs", type=int, help="runs at once (default: one per core)")
@@ -141,6 +159,9 @@ def build_parser():
     sweep.add_argument("--retry-failed", action="store_true",
                        help="run again the runs that did not converge (those that failed "
                             "outside their numbers, e.g. a killed worker, always are)")
+    sweep.add_argument("--strict", action="store_true",
+                       help="exit with status 5 if every run converged but some have "
+                            "warnings (runs.csv's warnings column)")
     figures = commands.add_parser(
         "figures", help="the paper's figures 3, 4 and 5 (what `make fig3 fig4 fig5` runs)",
         description="Run the sweep of the figures' scenes (orchestrate/sweeps/figures.toml; "
@@ -150,7 +171,7 @@ def build_parser():
         epilog="exit status: as `sweep`'s; a figure is drawn only if its runs converged")
     figures.add_argument("--jobs", type=int, help="runs at once (default: one per core)")
     figures.add_argument("--out", help="folder of the figures and of their runs "
-                                       "(default: results/)")
+                                       "(default: results/ in the current folder)")
     plot = commands.add_parser("plot", help="plot the stresses of a finished run",
                                description="Write RUN/stresses.png from RUN's CSV files.")
     plot.add_argument("run", help="a folder written by `solve`")
@@ -211,12 +232,13 @@ def _say(text):
 
 def _figures(args):
     from .figure_sweep import FigureDrawing
-    from .paths import FIGURE_SWEEP, RESULTS_DIR
-    out = Path(args.out) if args.out else RESULTS_DIR
+    from .paths import FIGURE_SWEEP
+    out = Path(args.out) if args.out else Path("results")
     runs = out / "figures"
     with FigureDrawing(FIGURE_SWEEP, runs, out) as drawing:
         status = _sweep(argparse.Namespace(file=FIGURE_SWEEP, out=runs, engine="local",
-                                           jobs=args.jobs, scheduler=None, retry_failed=False),
+                                           jobs=args.jobs, scheduler=None, retry_failed=False,
+                                           strict=False),
                         drawing.run_done)
         if status in (EXIT_CONVERGED, EXIT_NOT_CONVERGED):   # the figures of converged runs
             for path in drawing.finish():
@@ -236,8 +258,13 @@ def _sweep(args, run_done=lambda name=None: None):
         print("finished runs are kept; run the sweep again to resume", file=sys.stderr)
         return _interrupted(error)
     counts = table["status"].value_counts().to_dict() if len(table) else {}
-    print(f"{len(table)} runs: " + ", ".join(f"{n} {s}" for s, n in sorted(counts.items())))
-    return EXIT_CONVERGED if set(counts) <= {"converged"} else EXIT_NOT_CONVERGED
+    warned = int((table["warnings"].fillna("") != "").sum()) if len(table) else 0
+    print(f"{len(table)} runs: " + ", ".join(f"{n} {s}" for s, n in sorted(counts.items()))
+          + (f"; {warned} with warnings (runs.csv's warnings column)" if warned else "")
+          + f"; table: {table.attrs['path']}")
+    if not set(counts) <= {"converged"}:
+        return EXIT_NOT_CONVERGED
+    return EXIT_WARNINGS if warned and getattr(args, "strict", False) else EXIT_CONVERGED
 
 
 def scene_from_arguments(args):
@@ -331,4 +358,10 @@ def _solve(args):
          f"contact force {summary['total_force']:.4e} {units['force']}{descent}, contact "
          "zones " + ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in summary["contact_zones"])
          + f" {units['length']}; results in {args.out}")
+    for warning in summary["warnings"]:
+        print(f"warning ({warning['code']}): {warning['message']}", file=sys.stderr)
+    if summary["warnings"] and args.strict:
+        print(f"{len(summary['warnings'])} warning(s) and --strict: exit status "
+              f"{EXIT_WARNINGS}", file=sys.stderr)
+        return EXIT_WARNINGS
     return EXIT_CONVERGED

@@ -7,6 +7,8 @@
     3    failed: a worker died or hung, a file could not be written (disk full, file size
          limit, permission), or a system resource ran out
     4    an internal error (a bug), with its traceback
+    5    converged, but with warnings (orchestrate/validity.py), under --strict only: the
+         scene leaves what the tool models; the results are written
     130  interrupted by Ctrl-C (SIGINT); 143 terminated (SIGTERM); 129 hung up (SIGHUP);
          131 quit (SIGQUIT)
 """
@@ -15,6 +17,7 @@ import errno
 import signal
 
 EXIT_CONVERGED, EXIT_NOT_CONVERGED, EXIT_REFUSED, EXIT_FAILED, EXIT_INTERNAL = 0, 1, 2, 3, 4
+EXIT_WARNINGS = 5
 EXIT_INTERRUPTED = {signal.SIGINT: 130, signal.SIGTERM: 143, signal.SIGHUP: 129,
                     signal.SIGQUIT: 131}
 

@@ -1,10 +1,18 @@
-"""Finding FreeFEM and running its scripts with the project's include path."""
+"""Finding FreeFEM and running its scripts with the project's include path.
+
+The scripts and forms are read from ``freefem/``, or from the folder named by the
+environment variable ORCHESTRATE_FORMS (a copy of it with edited forms, say): every
+worker, the monolithic solve and the forms' hashes in a run's provenance
+(orchestrate/provenance.py) read the same folder."""
 
 import os
+from pathlib import Path
 import shutil
 import subprocess
 
 from .paths import FREEFEM_DIR
+
+FORMS_VARIABLE = "ORCHESTRATE_FORMS"
 
 # Debian's /etc/freefem++.pref points to a plugin folder that does not exist.
 DEFAULT_PLUGIN_DIR = "/usr/lib/freefem++"
@@ -24,17 +32,22 @@ def executable():
     return path
 
 
+def forms_dir():
+    """The folder of the FreeFEM scripts and forms a run reads (see the module's text)."""
+    return Path(os.environ.get(FORMS_VARIABLE) or FREEFEM_DIR)
+
+
 def environment():
     """Environment for a FreeFEM process: our scripts on the include path, plugins found."""
     env = dict(os.environ)
-    env["FF_INCLUDEPATH"] = str(FREEFEM_DIR)
+    env["FF_INCLUDEPATH"] = str(forms_dir())
     env.setdefault("FF_LOADPATH", DEFAULT_PLUGIN_DIR)
     return env
 
 
 def command(script, arguments):
     """The command line that runs ``script`` (a file in freefem/ or a path) headless."""
-    script_path = FREEFEM_DIR / script if not os.path.isabs(str(script)) else script
+    script_path = forms_dir() / script if not os.path.isabs(str(script)) else script
     return [executable(), "-nw", "-v", "0", str(script_path), *map(str, arguments)]
 
 

@@ -44,7 +44,7 @@ def with_model(scene, model):
 def away_from_patch_ends(scene, x):
     """Which of the points x1 lie farther than EDGE_DISTANCE thicknesses from every
     patch end."""
-    return ~near_patch_ends(scene, x, EDGE_DISTANCE)
+    return ~near_patch_ends(scene, x, EDGE_DISTANCE, capped=False)   # as calibrated
 
 
 def peaks(scene, level):

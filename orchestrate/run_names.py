@@ -2,14 +2,14 @@
 
 A point {eps_u: 1e-6, model: "shell", h2: 0.125} runs in
 ``eps_u=1e-06_model=shell_h2=0.125``: its keys in the file's order ([fixed] first, then
-the grid's or run's), numbers as ``:g`` writes them (or exactly, where ``:g`` would
-round), lists comma-joined, the brackets of ``coating[2].E`` dropped and every character
+the grid's or run's), numbers as ``:g`` writes them, lists comma-joined, the brackets of ``coating[2].E`` dropped and every character
 that is not a letter, a digit or one of ``. , _ + = -`` replaced by ``_``. A name is a
 function of the point's values alone, so a point keeps its folder when the sweep grows,
 unless:
 
 - two points of the sweep would share a name (values that differ only in replaced
-  characters, 5 and 5.0, or letter case, which some file systems ignore): each of them
+  characters, 5 and 5.0, beyond ``:g``'s six digits, or in letter case, which some file
+  systems ignore): each of them
   then takes ``@`` and a short hash of its values as a suffix (a point that had the
   name alone before is run again, into its suffixed folder: which point the old folder
   holds is not known);
@@ -45,12 +45,12 @@ def legacy_name(values):
 
 
 def value_text(value):
-    """A value as a name shows it: numbers as ``:g`` writes them unless that rounds."""
+    """A value as a name shows it: numbers as ``:g`` writes them (six digits: two points
+    whose values agree to six digits share that name, and take the hash suffix)."""
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, float):
-        short = f"{value:g}"
-        return short if float(short) == value else repr(value)
+        return f"{value:g}"
     if isinstance(value, (list, tuple)):
         return ",".join(value_text(item) for item in value)
     if isinstance(value, dict):

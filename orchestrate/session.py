@@ -11,6 +11,11 @@ use are stopped when it ends.
 A worker that serves its second scene is asked once for its Robin-to-trace map
 (orchestrate/robin_map.py), which the loop then evaluates instead of a solve.
 
+A worker compiles its forms (freefem/*.idp) when it starts. So that an edited form
+takes effect in the next scene, a kept worker serves a scene only while the forms' digest
+(orchestrate/provenance.py) is the one it started with; after an edit every kept worker
+is stopped and started anew.
+
     with Session() as session:
         for scene in scenes:
             solve(scene, settings, out, session=session)
@@ -26,6 +31,7 @@ import itertools
 import numpy as np
 
 from .folders import WorkFolder
+from .provenance import forms_digest
 from .worker import Worker
 
 # Coordinates that agree to this fraction of a body's extent are the same point.
@@ -77,10 +83,11 @@ def files_fingerprint(paths):
 class Entry:
     """A kept worker: where its mesh lies, how many scenes it served, its map."""
 
-    def __init__(self, worker, dofs, origin):
+    def __init__(self, worker, dofs, origin, forms):
         self.worker = worker
         self.dofs = dofs
         self.origin = origin
+        self.forms = forms         # the digest of the forms when it started
         self.scenes = 0
         self.robin_map = None
 
@@ -110,12 +117,14 @@ class Session:
     def take(self, name, script, arguments, fingerprint, origin, timeout):
         """The entry of a worker that reads what ``fingerprint`` stands for: kept from an
         earlier scene, or started now (not yet ready: call ``ready``)."""
+        forms = forms_digest()
         entry = self._entries.get(fingerprint)
-        if entry is None or entry.worker.process.poll() is not None:
-            self.drop(fingerprint)                  # a kept worker that has died
+        if (entry is None or entry.worker.process.poll() is not None   # died
+                or entry.forms != forms):                                # edited forms
+            self.drop(fingerprint)
             worker = Worker(name, script, arguments, self.folder, timeout,
                             stem=f"{name}-{next(self._names)}")
-            entry = self._entries[fingerprint] = Entry(worker, None, np.asarray(origin))
+            entry = self._entries[fingerprint] = Entry(worker, None, np.asarray(origin), forms)
         entry.worker.timeout = timeout
         entry.scenes += 1
         return entry

@@ -25,6 +25,7 @@ stagnates writes only history.csv and a summary.json that says why.
 """
 
 import contextlib
+from dataclasses import dataclass
 import math
 import os
 import time
@@ -44,12 +45,14 @@ from .model_choice import choose_models
 from .outputs import read_reactions, write_csv, write_history, write_json, write_shell_fields
 from .paraview import RUN_COLLECTION, write_collection
 from .problem_size import check_size
+from .provenance import forms_hashes, provenance
 from .robin import run_robin_loop
 from .scene import check_compatible, to_dict
 from .session import Session
 from .state import StateLayout
 from .subdomains import start_subdomains, write_inputs
 from .units import dimensionless, express_run, scaled_summary, summary_units
+from .validity import Say, run_warnings, scene_warnings
 from .warm_start import state_from_run
 
 
@@ -68,7 +71,9 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     writing the report) if the loop does not converge, SystemFailure if a worker or a
     file fails. The folder appears only once complete (orchestrate/folders.py)."""
     freefem.executable()             # a missing FreeFEM is reported before any work
-    scene, problem, model_choice, scales = prepare(scene, settings)
+    plan = prepare(scene, settings)
+    scene, problem, model_choice, scales = plan.scene, plan.problem, plan.model_choice, plan.scales
+    forms = forms_hashes()           # what the workers started now will compile
     start = time.perf_counter()
     with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
           contextlib.nullcontext(session) if session is not None else Session() as workers,
@@ -118,10 +123,17 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
                              and settings.method != "paper" else None),
             "dofs": dofs,
             "workers_kept": kept,
+            "provenance": provenance(forms),
+            "warnings": list(plan.warnings),
         }
         write_history(os.path.join(scratch, "history.csv"), loop.history)
         if loop.converged:
-            summary.update(_write_results(problem, loop, scratch))
+            results, contact_x1, contact_stress = _write_results(problem, loop, scratch)
+            summary.update(results)
+            summary["warnings"] += run_warnings(problem, results, contact_x1, contact_stress,
+                                                Say(scales, scene.units))
+        if forms_hashes() != forms:
+            summary["warnings"].append(forms_edited_warning())
         express_run(scratch, scales)         # every file in the scene's units
         summary = scaled_summary(summary, scales)
         summary["units"] = summary_units(scratch, scene.units, scales)
@@ -134,18 +146,34 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     return summary
 
 
+@dataclass(frozen=True)
+class Plan:
+    """A run decided before any work (prepare)."""
+
+    scene: object          # the scene as given, every "auto" patch's model chosen
+    problem: object        # the problem of its dimensionless form
+    model_choice: object   # the choice's report, or None
+    scales: object         # Scales back to the scene's units
+    warnings: tuple        # what validity.py knows of the scene before any work
+
+
 def prepare(scene, settings):
-    """Everything checked and decided before any work: (the scene as given, with every
-    "auto" patch's model chosen; the problem of its dimensionless form; the choice's
-    report or None; the Scales back to the scene's units). ParameterError for settings
-    the scene cannot take or a problem too large."""
+    """Everything checked and decided before any work (a Plan). ParameterError for
+    settings the scene cannot take or a problem too large."""
     check_compatible(scene, settings)
     solved, scales = dimensionless(scene)
     solved, model_choice = choose_models(solved, settings)
     problem = discretize(solved, settings)
     check_size(problem)
-    return (scene.with_models([c.model for c in solved.coatings]), problem, model_choice,
-            scales)
+    chosen = scene.with_models([c.model for c in solved.coatings])
+    return Plan(chosen, problem, model_choice, scales,
+                tuple(scene_warnings(chosen, scene, settings, Say(scales, scene.units))))
+
+
+def forms_edited_warning():
+    return {"code": "forms_edited", "message": "a FreeFEM form or script was edited while "
+            "the run went on: its workers may have read either version (provenance records "
+            "the hashes at its start); run it again", "value": None, "limit": None}
 
 
 def _inner_solve_used(history, two_levels):
@@ -196,7 +224,8 @@ def interface_stresses(layout, state, psi):
 
 
 def _write_results(problem, loop, out_dir):
-    """Interface stresses and forces of the converged state; return summary entries."""
+    """Interface stresses and forces of the converged state; return (summary entries, the
+    contact points' x1 and normal stresses)."""
     layout = StateLayout(problem.interfaces)
     state = loop.state
     stresses = interface_stresses(layout, state, loop.psi)
@@ -247,7 +276,7 @@ def _write_results(problem, loop, out_dir):
     bonds = [stresses[i][1] for i, f in enumerate(problem.interfaces) if f.kind == "bond"]
     scene = problem.scene
     zones = contact_zones(x_contact, sigma_contact)
-    return {
+    return ({
         "answers": _answers(problem, contact_rows, bond_rows, out_dir),
         "contact_force": contact_force,
         "interface_force": interface_force,
@@ -264,7 +293,7 @@ def _write_results(problem, loop, out_dir):
         "normal_mismatch_deg": math.degrees(max(
             (float(np.max(problem.interfaces[i].mismatch[stresses[i] < 0]))
              for i in layout.contact_indices if np.any(stresses[i] < 0)), default=0.0)),
-    }
+    }, x_contact, sigma_contact)
 
 
 def _answers(problem, contact_rows, bond_rows, out_dir):
@@ -286,7 +315,8 @@ def _answers(problem, contact_rows, bond_rows, out_dir):
         else:
             nodes = pd.read_csv(os.path.join(out_dir, f"{name}.csv"))
             coatings[name] = answers.coating_answers(scene, nodes)
-    return {"contact": answers.contact_answers(contact["x1"], contact["x2"], contact["sigma_n"]),
+    return {"contact": answers.contact_answers(scene, contact["x1"], contact["x2"],
+                                               contact["sigma_n"]),
             "bonds": bonds, "coatings": coatings}
 
 

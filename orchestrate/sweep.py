@@ -59,7 +59,7 @@ from .folders import (RunFolder, hold_lock, release_lock, remove_dead_run_leftov
                       remove_dead_work_folders)
 from .outputs import write_json
 from .paraview import SWEEP_COLLECTION, write_sweep_collection
-from .paths import RESULTS_DIR
+from .provenance import forms_digest
 from .run_names import legacy_name, run_names, values_hash
 from .scene import Settings, scene_from_dict, to_dict
 from .scene_file import is_scene_key, read_toml, scene_and_settings, shorthand_values
@@ -70,6 +70,8 @@ NOT_CONVERGED = ("diverged", "stagnated", "max_iterations", "contact_zone")
 FAILED = NOT_CONVERGED + ("error",)
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]*")      # fullmatch: no trailing newline
 ATTEMPTS = 2           # a run whose worker process dies when alone is tried this often
+FORMS_PASSES = 2       # passes over points solved with forms edited during the sweep
+SWEEPS_DIR = Path("results")   # a sweep's folder: results/<name> in the current folder
 
 
 # ---- the sweep file ---------------------------------------------------------------------
@@ -211,14 +213,33 @@ def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False, neighb
     return name
 
 
-def finished(folder, retry_failed=False, settings=None):
+def finished(folder, retry_failed=False, settings=None, forms=None):
     """Whether a point's run is done: converged, or (unless retry_failed) not converged
-    for reasons of its numbers; and, given the point's ``settings``, solved with them. A
-    run whose recorded settings differ (a default changed since it ran, e.g. the
-    penalty's) is not done: it is run again rather than mixed with the new ones."""
+    for reasons of its numbers; given the point's ``settings``, solved with them; and
+    solved with the forms whose digest is ``forms`` (default: the files' now). A run
+    whose recorded settings differ (a default changed since it ran, e.g. the penalty's)
+    or whose forms were edited since (or are not recorded) is not done: it is run again
+    rather than mixed with the new ones."""
     status = run_status(folder)
     done = status == "converged" or (status in NOT_CONVERGED and not retry_failed)
-    return done and (settings is None or not _other_settings(folder, settings))
+    return (done and (settings is None or not _other_settings(folder, settings))
+            and not other_forms(folder, forms_digest() if forms is None else forms))
+
+
+def _solved(folder):
+    """Whether a point's folder holds a run that reached an answer or a reason of its
+    numbers (not a report of a failure outside them)."""
+    return run_status(folder) in ("converged",) + NOT_CONVERGED
+
+
+def other_forms(folder, forms):
+    """Whether the run in ``folder`` recorded forms other than those of digest ``forms``
+    (orchestrate/provenance.py), or none."""
+    try:
+        summary = json.loads((Path(folder) / "summary.json").read_text())
+    except (OSError, ValueError):
+        return True
+    return (summary.get("provenance") or {}).get("forms_digest") != forms
 
 
 def _other_settings(folder, settings):
@@ -275,7 +296,8 @@ SUMMARY_COLUMNS = ("status", "reason", "converged", "iterations", "final_relativ
                    "descent", "interface_force", "peak_contact_stress",
                    "peak_interface_stress", "contact_half_width", "wall_time_s",
                    "setup_time_s", "time_per_iteration_s")
-OUTCOME_COLUMNS = SUMMARY_COLUMNS + ("model_chosen", "model_error_estimate")
+OUTCOME_COLUMNS = SUMMARY_COLUMNS + ("model_chosen", "model_error_estimate", "warnings",
+                                     "forms_digest")
 
 
 def _model_choice_columns(choice):
@@ -310,6 +332,8 @@ def gather(sweep_dir, runs):
         row["started_from"] = Path(summary["started_from"]).name if summary.get(
             "started_from") else None
         row.update(_model_choice_columns(summary.get("model_choice")))
+        row["warnings"] = "; ".join(w["code"] for w in summary.get("warnings") or ())
+        row["forms_digest"] = (summary.get("provenance") or {}).get("forms_digest")
         row.update(_answer_columns(summary.get("answers")))
         rows.append(row)
     return pd.DataFrame(rows)
@@ -356,6 +380,7 @@ def write_table(sweep_dir, runs):
     partial = path.with_name(".runs.csv.partial")
     table.to_csv(partial, index=False)
     os.replace(partial, path)
+    table.attrs["path"] = str(path)
     write_sweep_collection(Path(sweep_dir) / SWEEP_COLLECTION,
                            [Path(sweep_dir) / "runs" / name for name, _ in runs])
     return table
@@ -520,7 +545,7 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
     from . import freefem
     freefem.executable()                             # before any work
     check_points(points, scene_dir)
-    sweep_dir = Path(out) if out else RESULTS_DIR / name
+    sweep_dir = Path(out) if out else SWEEPS_DIR / name
     try:
         (sweep_dir / "runs").mkdir(parents=True, exist_ok=True)
     except OSError as error:
@@ -531,9 +556,16 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
         remove_dead_run_leftovers(sweep_dir / "runs")     # of a sweep killed before
         runs = named_points(points)
         adopt_legacy_folders(sweep_dir / "runs", runs)
+        forms = forms_digest()
+        stale = [name for name, _ in runs if _solved(sweep_dir / "runs" / name)
+                 and other_forms(sweep_dir / "runs" / name, forms)]
+        if stale:
+            print(f"{len(stale)} finished point(s) were solved with other FreeFEM forms than "
+                  f"the files' now: run again ({', '.join(stale[:5])}"
+                  f"{', ...' if len(stale) > 5 else ''})", file=stream)
         pending = [(name, values) for name, values in runs
                    if not finished(sweep_dir / "runs" / name, retry_failed,
-                                   point_scene(values, scene_dir)[1])]
+                                   point_scene(values, scene_dir)[1], forms)]
         jobs = jobs or os.cpu_count() or 1
         progress = Progress(len(runs), stream)
         progress.done = len(runs) - len(pending)
@@ -542,14 +574,25 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
                               if name not in waiting)
         try:
             run_done()
-            if pending:
-                neighbours = runs if warm_start_of(path) else None
+            neighbours = runs if warm_start_of(path) else None
+            for _ in range(1 + FORMS_PASSES):
+                if not pending:
+                    break
                 if engine == "dask":
                     run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler,
                              retry_failed, neighbours, run_done)
                 else:
                     run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed,
                               neighbours, run_done)
+                # forms edited while the sweep ran: the runs solved before are run again
+                forms = forms_digest()
+                pending = [(name, values) for name, values in runs
+                           if _solved(sweep_dir / "runs" / name)
+                           and other_forms(sweep_dir / "runs" / name, forms)]
+                if pending:
+                    print(f"FreeFEM forms edited during the sweep: {len(pending)} point(s) "
+                          "run again", file=stream)
+                    progress.done -= len(pending)
         finally:
             progress.close()
             remove_dead_run_leftovers(sweep_dir / "runs")  # of runs whose process died

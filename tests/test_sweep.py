@@ -389,3 +389,17 @@ def test_a_run_solved_under_other_settings_is_run_again(tmp_path):
     again = run_sweep(path, out, jobs=1, stream=open(os.devnull, "w"))
     assert json.loads(summary_path.read_text())["settings"]["theta"] == theta
     assert again.converged.all() and again.theta[0] == theta
+
+
+def test_a_sweep_writes_into_the_current_folder_and_says_where(tmp_path):
+    """Without --out, results/<name> relative to the folder it is run from, not the
+    project's; the table's path is printed."""
+    path = tmp_path / "here.toml"
+    path.write_text('name = "here"\n[[runs]]\nh2 = 0.25\n')
+    result = subprocess.run([sys.executable, "-m", "orchestrate", "sweep", str(path)],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    table = tmp_path / "results" / "here" / "runs.csv"
+    assert table.is_file() and f"table: {os.path.join('results', 'here', 'runs.csv')}" in \
+        result.stdout
+    assert not (PROJECT_DIR / "results" / "here").exists()

@@ -1,0 +1,116 @@
+"""Every run says what it ran, and an edited form takes effect in every path.
+
+The forms are read from a copy of freefem/ (ORCHESTRATE_FORMS, orchestrate/freefem.py),
+edited here as a user edits freefem/: the bodies' law made 25 % stiffer (the Lame
+constants' functions of elasticity.idp scaled). Then a fresh run, a kept worker (a
+Session) and a resumed sweep must all give the edited law's answer, and the recorded
+hashes must tell the two laws apart.
+"""
+
+import json
+import re
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import orchestrate
+from orchestrate import freefem
+from orchestrate.paths import FREEFEM_DIR
+from orchestrate.provenance import forms_digest, forms_hashes
+from tests.conftest import PROJECT_DIR
+
+SCENE = {"h2": 0.125, "E2": 1.0, "model": "shell"}
+
+
+def edit_law(folder):
+    """Scale the Lame constants of elasticity.idp by 1.25 in the forms ``folder``."""
+    path = folder / "elasticity.idp"
+    text = path.read_text()
+    edited = re.sub(r"(func real lame(Lambda|Mu)\(real E, real nu\) \{ return )", r"\g<1>1.25*",
+                    text)
+    assert edited.count("1.25*") == 2, "elasticity.idp no longer has the Lame functions"
+    path.write_text(edited)
+
+
+@pytest.fixture
+def forms(tmp_path, monkeypatch):
+    """A copy of freefem/ that the runs read."""
+    copy = tmp_path / "forms"
+    shutil.copytree(FREEFEM_DIR, copy)
+    monkeypatch.setenv(freefem.FORMS_VARIABLE, str(copy))
+    return copy
+
+
+def _peak(result):
+    return result.summary["peak_contact_stress"]
+
+
+def test_a_run_records_its_code_and_the_hash_of_every_form_it_read(forms):
+    first = orchestrate.solve(orchestrate.paper_scene(**SCENE))
+    recorded = first.summary["provenance"]
+    assert recorded["forms_dir"] == str(forms)
+    assert set(recorded["forms"]) == {path.name for path in FREEFEM_DIR.iterdir()
+                                      if path.suffix in (".idp", ".edp")} - {"monolithic.edp"}
+    assert recorded["forms"] == forms_hashes() and recorded["forms_digest"] == forms_digest()
+    assert recorded["package_version"] == orchestrate_version()
+    if (PROJECT_DIR / ".git").exists():
+        assert re.fullmatch(r"[0-9a-f]{40}", recorded["git_commit"])
+        assert isinstance(recorded["git_tree_modified"], bool)
+    edit_law(forms)
+    second = orchestrate.solve(orchestrate.paper_scene(**SCENE))
+    changed = {name for name, value in second.summary["provenance"]["forms"].items()
+               if recorded["forms"][name] != value}
+    assert changed == {"elasticity.idp"}
+    assert second.summary["provenance"]["forms_digest"] != recorded["forms_digest"]
+    assert abs(_peak(second) / _peak(first) - 1.0) > 0.01       # the edit shows
+
+
+def orchestrate_version():
+    from importlib import metadata
+    return metadata.version("orchestrate")
+
+
+def test_a_kept_worker_takes_an_edited_form_before_its_next_scene(forms):
+    scene = orchestrate.paper_scene(**SCENE)
+    with orchestrate.Session() as session:
+        before = orchestrate.solve(scene, session=session)
+        kept = orchestrate.solve(scene, session=session)
+        assert kept.summary["workers_kept"]                      # the session keeps them
+        edit_law(forms)
+        after = orchestrate.solve(scene, session=session)
+    assert not after.summary["workers_kept"]                      # restarted: new forms
+    fresh = orchestrate.solve(scene)                              # the edited law, alone
+    assert _peak(after) == pytest.approx(_peak(fresh), rel=1e-9)
+    assert abs(_peak(after) / _peak(before) - 1.0) > 0.01
+    assert after.summary["provenance"]["forms_digest"] == fresh.summary["provenance"][
+        "forms_digest"] != before.summary["provenance"]["forms_digest"]
+
+
+def test_a_sweep_resumed_after_an_edit_runs_its_points_again(forms, tmp_path):
+    sweep = tmp_path / "sweep.toml"
+    sweep.write_text('name = "edited"\n[fixed]\nmodel = "shell"\n[grid]\nh2 = [0.25, 0.125]\n')
+    command = [sys.executable, "-m", "orchestrate", "sweep", str(sweep), "--jobs", "1",
+               "--out", str(tmp_path / "out")]
+    env_run = {"cwd": PROJECT_DIR, "capture_output": True, "text": True, "timeout": 300}
+    first = subprocess.run(command, **env_run)
+    assert first.returncode == 0, first.stderr
+    before = pd.read_csv(tmp_path / "out" / "runs.csv")
+    again = subprocess.run(command, **env_run)                  # nothing edited: nothing run
+    assert again.returncode == 0 and "other FreeFEM forms" not in again.stderr
+    assert (pd.read_csv(tmp_path / "out" / "runs.csv")["wall_time_s"]
+            == before["wall_time_s"]).all()
+    edit_law(forms)
+    resumed = subprocess.run(command, **env_run)
+    assert resumed.returncode == 0, resumed.stderr
+    assert "2 finished point(s) were solved with other FreeFEM forms" in resumed.stderr
+    after = pd.read_csv(tmp_path / "out" / "runs.csv")
+    assert set(after["forms_digest"]) == {forms_digest()} != set(before["forms_digest"])
+    assert np.all(np.abs(after["peak_contact_stress"] / before["peak_contact_stress"] - 1)
+                  > 0.01)
+    summary = json.loads((tmp_path / "out" / "runs" / after["id"][0] / "summary.json")
+                         .read_text())
+    assert summary["provenance"]["forms_dir"] == str(forms)
