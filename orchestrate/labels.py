@@ -1,16 +1,17 @@
-"""Boundary labels, read from ``freefem/labels.idp`` so that they are defined once."""
+"""Boundary labels, read from ``freefem/labels.idp`` (the forms' folder of
+orchestrate/freefem.py) so that they are defined once."""
 
 import re
 
-from .paths import FREEFEM_DIR
+from .freefem import forms_dir
 
 _LABEL_LINE = re.compile(r"^\s*int\s+(\w+)\s*=\s*(\d+)\s*;")
 
 
-def read_labels(path=FREEFEM_DIR / "labels.idp"):
+def read_labels(path=None):
     """Return ``{name: number}`` for every ``int Name = k;`` line of the file."""
     labels = {}
-    for line in path.read_text().splitlines():
+    for line in (path or forms_dir() / "labels.idp").read_text().splitlines():
         match = _LABEL_LINE.match(line)
         if match:
             labels[match.group(1)] = int(match.group(2))
