@@ -44,7 +44,7 @@ $(FIGURE_RUNS) $(FIGURES) &: $(FIGURE_SWEEP) $(SOLVER_SOURCES) $(DRAWING_SOURCES
 DISCRETE_RUNS := $(foreach m,shell elastic,results/discrete/$(m)/summary.json)
 discrete: results/discrete.png
 results/discrete.png: $(DISCRETE_RUNS) | setup
-	$(PYTHON) -m orchestrate.discrete_figure $(DISCRETE_RUNS)
+	$(PYTHON) -m orchestrate.discrete_figure $(DISCRETE_RUNS) --out $@
 results/discrete/%/summary.json: orchestrate/scenes/discrete.toml | setup
 	$(PYTHON) -m orchestrate solve --quiet --overwrite --scene $< --model $* --out $(@D)
 

@@ -14,7 +14,8 @@ Stresses are drawn in units of 1e-4 E (STRESS_UNIT); the data files keep them in
 Fig. 5 contours the nodal values of coating1.csv (recovered by freefem/recovery.idp) on
 the coating's own P2 triangles (coating1_cells.csv): on each, the quadratic its six
 nodal values define (p2_triangulation). Every panel is stretched vertically by b/h2, so
-that all are as high as h2 = b (each title says so).
+that all are as high as h2 = b: the title of each stretched panel says by how much
+("stretched x8": drawn 8 times taller than it is).
 """
 
 import argparse
@@ -265,7 +266,8 @@ def fig5(runs, out_dir):
             axis.set_ylim(0, h2)
             axis.tick_params(labelsize=8)
             axis.set_title(f"$E_2$ = {_label_E2(E2)}, $h_2$ = {_label_h2(h2)}"
-                           f" (vertical x{stretch:g}): max {values.max():.2f}", fontsize=9)
+                           + (f" (stretched x{stretch:g})" if stretch != 1 else "")
+                           + f": max {values.max():.2f}", fontsize=9)
             if column == 0:
                 axis.set_ylabel(r"$(x_2 - h)/b$")
             if row == len(heights) - 1:

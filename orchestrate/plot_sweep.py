@@ -6,10 +6,14 @@ Reads only runs.csv, so a plot never recomputes anything. Rows are picked with `
 KEY=VALUE``; runs without a value of y (those that did not converge) are left out, and
 said so. Where runs that share x and the line's value still differ in other parameters
 (a sweep of several grids: E2, or the loop's settings), the line is split by those too
-and its label names them, so that no line joins runs of different scenes."""
+and its label names them, so that no line joins runs of different scenes. Each axis
+names its column's unit (``column_unit``): the column's kind (a length, a stress, ...:
+orchestrate/units.py) in the runs' units (runs.csv's units.* columns; b and E without
+them)."""
 
 import difflib
 import os
+import re
 
 import matplotlib
 
@@ -20,12 +24,18 @@ import pandas as pd  # noqa: E402
 
 from .errors import ParameterError  # noqa: E402
 from .run_names import UNSAFE  # noqa: E402
+from .scene_file import SHORTHANDS  # noqa: E402
 from .sweep import OUTCOME_COLUMNS  # noqa: E402
+from .units import DEGREES, FORCE, KINDS, LENGTH, SCENE_KINDS, SECONDS, STRESS  # noqa: E402
 
 NOT_PARAMETERS = {"id", *OUTCOME_COLUMNS}  # a run's name and outcome: never split by
 LEGEND_INSIDE = 8                          # more lines than this: the legend goes aside
 # (line style, marker) of the lines of one colour, told apart by the split parameters
 STYLES = [(line, marker) for marker in "osv^Dx" for line in ("-", "--", ":", "-.")]
+# the answers' columns (orchestrate/sweep.py): stresses, and their positions x1
+ANSWER = re.compile(r"^(peak_pressure|(bond-[^.]+|coating\d+)\.\w+)$")
+SETTING_UNITS = {"element_size": "b", "theta": "b/E", "robin": "E/b",  # b and E always
+                 "worker_timeout": "s", "memory_limit": "GiB"}
 
 
 def read_runs(sweep_dir):
@@ -98,6 +108,61 @@ def _statuses(rows):
     return f" (status: {_values_text(rows['status'])})" if "status" in rows else ""
 
 
+def column_kind(name):
+    """The kind of a runs.csv column (LENGTH, STRESS, ... of orchestrate/units.py), or
+    None: an answer (a stress, its _x1 a length), a scene key (``coating[1].E``), a
+    shorthand of the paper's (h2: coating.thickness), any other output by its name."""
+    position = re.match(r"^(.*)_x[12]$", name)
+    if position and ANSWER.match(position.group(1)):
+        return LENGTH
+    if ANSWER.match(name):
+        return STRESS
+    if name in SHORTHANDS and name != "chi":          # chi: an inverse length
+        name = SHORTHANDS[name][1][0]
+    table, _, field = re.sub(r"\[\d+\]", "", name).partition(".")
+    if field:
+        return SCENE_KINDS.get(table, {}).get(field)
+    return KINDS.get(name)
+
+
+def _one_unit(table, column, default):
+    """The one value of column ``units.KIND`` among the runs; ParameterError if they
+    differ (their numbers do not share an axis)."""
+    if column not in table:
+        return default                    # runs older than units: b and E
+    values = table[column].dropna().astype(str).unique().tolist()
+    if len(values) > 1:
+        raise ParameterError(f"the runs are in different units ({column}: "
+                             f"{', '.join(values)}): pick one with --where "
+                             f"{column}={values[0]}")
+    return values[0] if values else default
+
+
+def column_unit(table, name):
+    """The unit of column ``name`` in the runs of ``table``, as a person writes it; None
+    for a plain number or a column of unknown kind."""
+    if name in SETTING_UNITS:
+        return SETTING_UNITS[name]
+    if name == "chi":
+        return f"1/{_one_unit(table, 'units.length', 'b')}"
+    kind = column_kind(name)
+    if kind in (LENGTH, STRESS):
+        return _one_unit(table, f"units.{kind}", {LENGTH: "b", STRESS: "E"}[kind])
+    if kind == FORCE:
+        length = _one_unit(table, "units.length", "b")
+        stress = _one_unit(table, "units.stress", "E")
+        force = _one_unit(table, "units.force", "E b" if (length, stress) == ("b", "E")
+                          else f"{stress} {length}")
+        return force.replace(" (per unit width)", "") + " per unit width"
+    return {SECONDS: "s", DEGREES: "degree"}.get(kind)
+
+
+def axis_label(table, name):
+    """``h2 (mm)``; the name alone where the column has no unit."""
+    unit = column_unit(table, name)
+    return f"{name} ({unit})" if unit else name
+
+
 def split_columns(table, x, by):
     """The other parameters that tell apart runs sharing x (and the line's value): the
     first in the table's order of each set of columns that vary together (E2, not also
@@ -144,7 +209,8 @@ def plot_sweep(sweep_dir, y, x, by=None, where=(), out=None, log_x=False, log_y=
     folder = os.path.dirname(sweep_dir) if str(sweep_dir).endswith(".csv") else sweep_dir
     title = os.path.basename(os.path.abspath(folder)) + (f" ({', '.join(where)})" if where
                                                          else "")
-    figure = draw(table, y, x, ([by] if by else []) + split, title, log_x, log_y)
+    figure = draw(table, y, x, ([by] if by else []) + split, title, log_x, log_y,
+                  x_label=axis_label(table, x), y_label=axis_label(table, y))
     out = out or os.path.join(folder, _file_name(y, x, by, where))
     try:
         figure.savefig(out, dpi=150, bbox_inches="tight")
@@ -157,9 +223,11 @@ def plot_sweep(sweep_dir, y, x, by=None, where=(), out=None, log_x=False, log_y=
     return out, notes
 
 
-def draw(table, y, x, line_keys, title, log_x=False, log_y=False):
+def draw(table, y, x, line_keys, title, log_x=False, log_y=False, x_label=None,
+         y_label=None):
     """The figure: y against x, a line per values of ``line_keys``, a colour per value
-    of the first, a line style per values of the others."""
+    of the first, a line style per values of the others; the axes labelled ``x_label``,
+    ``y_label`` (default: the column names)."""
     figure, axes = plt.subplots(figsize=(6.4, 4.2))
     groups = (table.groupby(line_keys, dropna=False, sort=False) if line_keys
               else [((), table)])
@@ -179,8 +247,8 @@ def draw(table, y, x, line_keys, title, log_x=False, log_y=False):
         axes.set_xscale("log")
     if log_y:
         axes.set_yscale("log")
-    axes.set_xlabel(x)
-    axes.set_ylabel(y)
+    axes.set_xlabel(x_label or x)
+    axes.set_ylabel(y_label or y)
     axes.set_title(title)
     if not line_keys:
         figure.tight_layout()

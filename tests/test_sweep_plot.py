@@ -20,7 +20,8 @@ import pytest
 
 from orchestrate.errors import ParameterError
 from orchestrate.plot import plot_run
-from orchestrate.plot_sweep import read_runs, select, split_columns
+from orchestrate import plot_sweep as plot_sweep_module
+from orchestrate.plot_sweep import axis_label, plot_sweep, read_runs, select, split_columns
 from orchestrate.run_names import MAX_LENGTH, legacy_name, run_names
 from orchestrate.sweep import load_sweep, named_points, run_sweep
 from tests.conftest import PROJECT_DIR
@@ -71,9 +72,9 @@ def test_run_folders_are_named_by_their_values_in_the_files_order(tmp_path):
     _, points = load_sweep(path)
     names = [name for name, _ in named_points(points)]
     assert names[:6] == NAMES
-    # brackets dropped, unsafe characters replaced; a number :g would round, exact
+    # brackets dropped, unsafe characters replaced; numbers as :g writes them (six digits)
     assert names[6] == ("eps_u=0.0001_scene=scenes_two_patches.toml_coating2.E=2.5_"
-                        "load.force=0.001_rho=0.30000000000000004")
+                        "load.force=0.001_rho=0.3")
 
 
 def test_points_whose_names_would_collide_take_a_hash_suffix():
@@ -167,6 +168,75 @@ def test_plot_sweep_names_a_column_it_cannot_use_in_one_line(sweep, arguments, n
         assert "columns: id, eps_u, model, h2" in result.stderr
     else:
         assert "E2 takes 1, 5" in result.stderr
+
+
+@pytest.fixture
+def drawn_labels(monkeypatch):
+    """The (x, y) axis labels of every figure plot_sweep draws, in order."""
+    labels = []
+    draw = plot_sweep_module.draw
+
+    def recording(*arguments, **options):
+        figure = draw(*arguments, **options)
+        labels.append((figure.axes[0].get_xlabel(), figure.axes[0].get_ylabel()))
+        return figure
+    monkeypatch.setattr(plot_sweep_module, "draw", recording)
+    return labels
+
+
+def _in_units(table, tmp_path, length="mm", stress="MPa"):
+    """runs.csv of ``table`` with its runs' units renamed (the numbers are as they are:
+    the labels are under test); return its folder."""
+    table = table.copy()
+    table["units.length"], table["units.stress"] = length, stress
+    table.to_csv(tmp_path / "runs.csv", index=False)
+    return tmp_path
+
+
+def test_plot_sweep_labels_its_axes_in_b_and_E_for_a_dimensionless_sweep(sweep,
+                                                                        drawn_labels):
+    _, out, _ = sweep
+    plot_sweep(out, "peak_contact_stress", "h2", by="model", out=out / "labels.png")
+    assert drawn_labels == [("h2 (b)", "peak_contact_stress (E)")]
+
+
+@pytest.mark.parametrize("x, y, labels", [
+    ("h2", "peak_contact_stress", ("h2 (mm)", "peak_contact_stress (MPa)")),
+    ("coating[1].thickness", "bond-coating1.shear",
+     ("coating[1].thickness (mm)", "bond-coating1.shear (MPa)")),
+    ("E2", "bond-coating1.shear_x1", ("E2 (MPa)", "bond-coating1.shear_x1 (mm)")),
+    ("h2", "total_force", ("h2 (mm)", "total_force (MPa mm per unit width)")),
+    ("h2", "iterations", ("h2 (mm)", "iterations")),            # a count: no unit
+    ("model", "coating1.von_mises", ("model", "coating1.von_mises (MPa)")),
+])
+def test_plot_sweep_labels_its_axes_in_the_runs_units(sweep, tmp_path, drawn_labels, x, y,
+                                                      labels):
+    _, out, table = sweep
+    folder = _in_units(table, tmp_path)
+    plot_sweep(folder, y, x, where=["E2=1"] if x != "E2" else [], out=tmp_path / "p.png")
+    assert drawn_labels == [labels]
+
+
+def test_a_table_without_units_is_in_b_and_E(sweep):
+    table = read_runs(sweep[1]).drop(columns=["units.length", "units.stress"],
+                                     errors="ignore")
+    assert axis_label(table, "coating[1].E") == "coating[1].E (E)"
+    assert axis_label(table, "descent") == "descent (b)"
+    assert axis_label(table, "theta") == "theta (b/E)"      # a setting: b and E always
+
+
+def test_runs_in_different_units_are_refused_on_a_shared_axis(sweep, tmp_path):
+    _, _, table = sweep
+    mixed = table.copy()
+    mixed["units.length"] = ["mm"] * 3 + ["b"] * (len(table) - 3)
+    mixed.to_csv(tmp_path / "runs.csv", index=False)
+    with pytest.raises(ParameterError, match=r"different units \(units.length: mm, b\): pick "
+                       r"one with --where units.length=mm"):
+        plot_sweep(tmp_path, "peak_contact_stress", "h2", out=tmp_path / "p.png")
+    # picked: the label has its unit
+    path, _ = plot_sweep(tmp_path, "peak_contact_stress", "h2", where=["units.length=mm"],
+                         out=tmp_path / "p.png")
+    assert os.path.exists(path)
 
 
 # ---- plot of one run ------------------------------------------------------------------
