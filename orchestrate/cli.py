@@ -358,6 +358,11 @@ def _solve(args):
          f"contact force {summary['total_force']:.4e} {units['force']}{descent}, contact "
          "zones " + ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in summary["contact_zones"])
          + f" {units['length']}; results in {args.out}")
+    element = settings.element_size / settings.mesh_level          # in b
+    _say(f"mesh: interface elements of {element * scene.units.b:.4g} {units['length']}"
+         + ("" if scene.units.length == "b" else
+            f" (element_size {settings.element_size:g} b at mesh level {settings.mesh_level}"
+            f", b = {scene.units.b:g} {units['length']})"))
     for warning in summary["warnings"]:
         print(f"warning ({warning['code']}): {warning['message']}", file=sys.stderr)
     if summary["warnings"] and args.strict:

@@ -63,8 +63,14 @@ class FigureDrawing:
         self.pool.submit(int)              # the process starts now, not at the first figure
         self.drawings = {}                 # figure: the future of its batch, or None: waiting
         self.batches = []
+        self.solved = set()                # the runs reported done
 
     def run_done(self, name=None):
+        if name in self.solved:            # solved again (forms edited during the sweep):
+            for figure, folders in self.runs.items():    # its figures are drawn again
+                if any(Path(folder).name == name for folder in folders):
+                    self.drawings.pop(figure, None)
+        self.solved.add(name)
         ready = ready_figures(self.runs, self.drawings)
         self.drawings.update((figure, None) for figure in ready)
         if not self.batches or self.batches[-1].done():

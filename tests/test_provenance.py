@@ -114,3 +114,28 @@ def test_a_sweep_resumed_after_an_edit_runs_its_points_again(forms, tmp_path):
     summary = json.loads((tmp_path / "out" / "runs" / after["id"][0] / "summary.json")
                          .read_text())
     assert summary["provenance"]["forms_dir"] == str(forms)
+
+
+def test_forms_edited_while_a_sweep_runs_leave_no_stale_point(forms, tmp_path):
+    """The forms edited once the first point is solved (the sweep's worker process keeps
+    its FreeFEM workers from point to point): the later points restart their workers,
+    and the first is solved again once the pass is over; every row is the edited law's."""
+    from orchestrate.sweep import run_sweep
+
+    sweep = tmp_path / "sweep.toml"
+    sweep.write_text('name = "mid"\n[fixed]\nmodel = "shell"\n[grid]\nh2 = [0.25, 0.125]\n')
+    solved = []
+
+    def edit_after_the_first(name=None):
+        if name is not None:
+            solved.append(name)
+            if len(solved) == 1:
+                edit_law(forms)
+    table = run_sweep(sweep, tmp_path / "out", jobs=1, stream=open("/dev/null", "w"),
+                      run_done=edit_after_the_first)
+    assert len(solved) == 3 and solved[0] == solved[2]        # the first point again
+    assert set(table["forms_digest"]) == {forms_digest()}
+    fresh = [orchestrate.solve(orchestrate.paper_scene(model="shell", h2=h2))
+             for h2 in (0.25, 0.125)]
+    assert table["peak_contact_stress"].tolist() == pytest.approx(
+        [_peak(result) for result in fresh], rel=1e-9)
