@@ -13,6 +13,43 @@ from orchestrate import freefem  # noqa: E402
 
 TESTS_FREEFEM_DIR = Path(__file__).resolve().parent / "freefem"
 
+# A steel cylinder on a steel block with a hard coating, in mm and MPa (b = 2.5 mm: the
+# paper's bodies, 4 b by 8 b); a contact about 1.8 mm wide, 11 interface elements.
+STEEL_SCENE = """
+symmetric = true
+[units]
+length = "mm"
+stress = "MPa"
+b = 2.5
+[indenter]
+radius = 100.0
+width = 10.0
+height = 20.0
+E = {E}
+nu = 0.3
+[base]
+width = 10.0
+height = 20.0
+E = {E}
+nu = 0.3
+[[coating]]
+start = 0.0
+end = 5.0
+thickness = {thickness}
+E = {E2}
+nu = 0.25
+model = "{model}"
+[load]
+force = {force}
+"""
+STEEL_VALUES = dict(E=210000.0, thickness=0.1, E2=450000.0, model="shell", force=800.0)
+
+
+def steel_scene(path, **values):
+    """Write the steel scene with ``values`` over STEEL_VALUES into ``path``; return it."""
+    path.write_text(STEEL_SCENE.format(**{**STEEL_VALUES, **values}))
+    return path
+
 
 @pytest.fixture
 def run_freefem(tmp_path):

@@ -24,45 +24,14 @@ from orchestrate.errors import ParameterError
 from orchestrate.scene_file import apply_overrides, load_scene, scene_and_settings
 from orchestrate.sweep import load_sweep, point_scene
 from orchestrate.units import Units
-from tests.conftest import PROJECT_DIR
+from tests.conftest import PROJECT_DIR, STEEL_SCENE, STEEL_VALUES, steel_scene
 
-# A steel cylinder on a steel block with a hard coating, in mm and MPa (b = 2.5 mm: the
-# paper's bodies, 4 b by 8 b); a contact about 0.9 mm wide.
-SCENE = """
-symmetric = true
-[units]
-length = "mm"
-stress = "MPa"
-b = 2.5
-[indenter]
-radius = 100.0
-width = 10.0
-height = 20.0
-E = 210000.0
-nu = 0.3
-[base]
-width = 10.0
-height = 20.0
-E = 210000.0
-nu = 0.3
-[[coating]]
-start = 0.0
-end = 5.0
-thickness = {thickness}
-E = {E2}
-nu = 0.25
-model = "{model}"
-[load]
-force = {force}
-"""
-GIVEN = dict(thickness=0.1, E2=450000.0, model="shell", force=800.0)
-CHANGED = dict(thickness=0.2, E2=300000.0, model="shell", force=800.0)   # what each way sets
+GIVEN = dict(STEEL_VALUES)
+CHANGED = dict(thickness=0.2, E2=300000.0)         # what each way sets
 
 
 def scene_file(folder, name, **values):
-    path = folder / f"{name}.toml"
-    path.write_text(SCENE.format(**{**GIVEN, **values}))
-    return path
+    return steel_scene(folder / f"{name}.toml", **values)
 
 
 @pytest.fixture(scope="module")
@@ -168,7 +137,7 @@ def test_a_wrong_unit_is_refused_with_exit_2_naming_file_key_and_what_is_due(
 ], ids=["a misspelt stress unit", "a stress for the length", "b not a length"])
 def test_unit_names_are_checked(tmp_path, table, words):
     path = tmp_path / "scene.toml"
-    path.write_text(SCENE.format(**GIVEN).replace(
+    path.write_text(STEEL_SCENE.format(**GIVEN).replace(
         'length = "mm"\nstress = "MPa"\nb = 2.5', table))
     with pytest.raises(ParameterError) as error:
         load_scene(path)

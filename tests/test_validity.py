@@ -17,35 +17,8 @@ from orchestrate.scene_file import scene_and_settings
 from orchestrate.solve import solve
 from orchestrate.validity import (COATING_SHARE, DESCENT_LIMIT, ELEMENTS_ACROSS,
                                   MISMATCH_LIMIT_DEG, MODULUS_SHARE, STRAIN_LIMIT)
-from tests.conftest import PROJECT_DIR
+from tests.conftest import PROJECT_DIR, steel_scene
 
-STEEL = """
-symmetric = true
-[units]
-length = "mm"
-stress = "MPa"
-b = 2.5
-[indenter]
-radius = 100.0
-width = 10.0
-height = 20.0
-E = {E}
-nu = 0.3
-[base]
-width = 10.0
-height = 20.0
-E = {E}
-nu = 0.3
-[[coating]]
-start = 0.0
-end = 5.0
-thickness = 0.1
-E = {E2}
-nu = 0.25
-model = "shell"
-[load]
-force = 800.0
-"""
 CYLINDER = PROJECT_DIR / "orchestrate" / "scenes" / "cylinder.toml"
 
 # name: (scene file or None for the paper's, overrides, settings)
@@ -69,8 +42,8 @@ def summaries(tmp_path_factory):
     """Each scene's summary, solved once."""
     folder = tmp_path_factory.mktemp("validity")
     files = {"steel": folder / "steel.toml", "steel_gpa": folder / "steel_gpa.toml"}
-    files["steel"].write_text(STEEL.format(E=210000.0, E2=450000.0))
-    files["steel_gpa"].write_text(STEEL.format(E=210.0, E2=450.0))
+    steel_scene(files["steel"])
+    steel_scene(files["steel_gpa"], E=210.0, E2=450.0)
     found = {}
     for number, (name, (path, overrides, settings)) in enumerate(SCENES.items()):
         scene, settings = scene_and_settings(files.get(path, path), overrides, settings)
