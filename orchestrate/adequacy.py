@@ -279,7 +279,7 @@ def _within_columns(table):
 
 
 def verdict(validation):
-    """The targets of the README's table, from the validation."""
+    """The targets of docs/findings.md's table, from the validation."""
     within = pd.concat([validation[column] for column in _within_columns(validation)]).dropna()
     not_estimated = validation.shell_contact_estimated.isna()
     return {"scenes": len(validation),

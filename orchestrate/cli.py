@@ -2,12 +2,13 @@
 
 Without --scene, the paper's scene (orchestrate/scenes/paper.toml). Flags override
 the file: the paper's parameters (--h2, --E2, --model, ...; orchestrate/scene_file.py's
-SHORTHANDS), any scene key with --set KEY=VALUE, and every solver setting. Lengths are
-in units of b and moduli in units of E. Exit statuses (orchestrate/errors.py): 0
-converged, 1 not converged (the report is in DIR/summary.json), 2 refused before any
-work (bad input, a missing FreeFEM, an output folder that is not free), 3 failed (a
-worker, a file, the machine), 4 an internal error, 130 interrupted (Ctrl-C), 143
-terminated (SIGTERM).
+SHORTHANDS), any scene key with --set KEY=VALUE, and every solver setting. Values are
+in the scene file's units (its [units] table; b and E without one), or carry their own
+("20 um", "450 GPa"). Exit statuses (orchestrate/errors.py): 0 converged, 1 not
+converged (the report is in DIR/summary.json), 2 refused before any work (bad input, a
+missing FreeFEM, an output folder that is not free), 3 failed (a worker, a file, the
+machine), 4 an internal error, 5 converged with warnings under --strict, 130
+interrupted (Ctrl-C), 143 terminated (SIGTERM).
 """
 
 import argparse
@@ -128,8 +129,10 @@ def build_parser():
     commands = parser.add_subparsers(dest="command", required=True)
     solve = commands.add_parser(
         "solve", help="solve one scene and write its results into a folder",
-        description="Solve one scene. Lengths in b, moduli in E. Writes contact.csv, "
-                    "interface.csv, history.csv, summary.json and VTU fields into --out.",
+        description="Solve one scene. Values in the scene file's units ([units]; b and E "
+                    "without it), or with their own (\"20 um\", \"450 GPa\"). Writes "
+                    "contact.csv, interface.csv, history.csv, summary.json and VTU fields "
+                    "into --out.",
         epilog=EXIT_STATUSES, formatter_class=argparse.RawDescriptionHelpFormatter)
     solve.add_argument("--out", required=True, help="output folder (made whole at the end)")
     solve.add_argument("--overwrite", action="store_true",

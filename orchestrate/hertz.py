@@ -31,7 +31,7 @@ The Robin loop is run to eps_u = 1e-9: at the default 1e-6 the nodal pressures c
 the loop's own error (the pressure is a difference of displacements over theta), a few
 tenths of a per cent node to node, and on fine meshes a single node near the axis stood
 up to 3 % above its neighbours (W = 8, level 3: peak +3.3 % at eps_u = 1e-6, +0.55 %
-and smooth at 1e-10). The measured numbers are in results/hertz.csv and the README.
+and smooth at 1e-10). The measured numbers are in results/hertz.csv and docs/findings.md.
 
     python -m orchestrate.hertz                  # the study: prints a table, writes CSV
     python -m orchestrate.hertz --sizes 4 8 --levels 1 --thetas 1e-3

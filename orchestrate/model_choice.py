@@ -2,7 +2,7 @@
 
 The estimate is a priori: from quantities of the scene, before any mesh, calibrated on
 measured errors (orchestrate/adequacy.py, ``--fit``) and checked on scenes it never saw
-(the README's "Choosing the coating model").
+(docs/findings.md, "Choosing the coating model").
 
 Two quantities are estimated, each as a relative error against the 2D coating model
 (exact for the coating, up to its mesh): the peak contact stress ("contact") and the peak
@@ -37,7 +37,7 @@ stress is too soft by a few tenths of a per cent, a plateau whose cause is not i
     stretch_shell:  contact |e| = max(S x^2 g^s, min(T x^2, P)),   bond |e| = B x^2
 
 The 2D coating model ("elastic") is the reference: its estimate is 0 (its error is the
-mesh's, 0.03 % on the paper's mesh, README). |e| is the estimate.
+mesh's, 0.03 % on the paper's mesh, docs/findings.md). |e| is the estimate.
 
 Where the estimate was not calibrated, or cannot hold, the 1D models are "not
 estimated" and auto takes the 2D model: a coating Poisson ratio outside NU2_CALIBRATED
@@ -50,7 +50,7 @@ Cost: the estimated number of unknowns of the whole problem (problem_size.py), c
 before any mesh. Costs within COST_TIE of the cheapest count as the same, and then the
 more faithful model wins: on the paper's mesh the 2D coating needs no more unknowns than
 a shell until it must refine (thinner than about b/32), and a run's time follows its
-unknowns (README, benchmarks).
+unknowns (docs/findings.md, "Speed and accuracy").
 """
 
 import math

@@ -53,7 +53,7 @@ PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
 # theta = 2.5e-4 b/E on the paper's mesh (elements b/16), shrinking with the elements, so
 # that the penalty's error (0.013 % of the peak contact stress there, 0.0044 % at mesh
 # level 3) stays below the mesh's (results/penalty.csv, orchestrate/penalty.py); a
-# smaller theta costs that loop no iterations (README, "Penalty").
+# smaller theta costs that loop no iterations (docs/method.md, "Penalty").
 THETA_PER_LENGTH = 4e-3
 
 
@@ -427,7 +427,7 @@ class Settings:
                      "factor gamma/2 or 2/gamma away from its best value 2 (measured: 290 "
                      "iterations at 0.01; with two levels, 4 E over the element length) and "
                      "stops converging beyond that range")
-            # the Robin-Robin exchange loses the penalised laws at gamma theta = 2 (README)
+            # the Robin-Robin exchange loses the penalised laws at gamma theta = 2 (docs/method.md)
             _require(self.robin * self.theta < 1.5, "robin",
                      f"robin = {self.robin!r} must be below 1.5/theta = {1.5 / self.theta:g}: "
                      "at gamma theta = 2 the Robin exchange no longer fixes the interface laws")
@@ -461,7 +461,7 @@ class Settings:
     @property
     def robin_parameter(self):
         """gamma: as given, else the paper's 1/theta for its loop; for the active-set loop
-        2 E/b (measured best on the figure scenes, README), or TWO_LEVEL_ROBIN_PER_LENGTH
+        2 E/b (measured best on the figure scenes, docs/method.md), or TWO_LEVEL_ROBIN_PER_LENGTH
         E over the element length where a coarse correction may take the smooth modes;
         never above 1/theta, where the exchange stays away from its singularity
         gamma theta = 2."""

@@ -1,6 +1,6 @@
 """Scene files (TOML) and the overrides that flags and sweeps apply to a scene.
 
-A scene file has the tables of orchestrate/scene.py (README, "Scene files"):
+A scene file has the tables of orchestrate/scene.py (docs/reference.md, "Scene files"):
 
     symmetric = true
     contact_zone = [0.0, 2.0]      # optional

@@ -5,7 +5,7 @@ except for the fine references (orchestrate/reference.py), computed once if miss
     python -m orchestrate.stability results/stability
 
 Writes results/stability/{loops,models}.png and findings.csv, and prints the tables the
-README quotes.
+docs/findings.md quotes.
 """
 
 import argparse

@@ -6,7 +6,7 @@ its check here is on a scene of the held-out set, which neither its forms nor it
 constants saw, measured against the mesh-converged 2D model
 (orchestrate/model_errors.py): paper h2 = 0.45 b, E2 = 0.3 E, where the Timoshenko shell
 is 25 % too stiff in contact stress and 29 % on the bond, the stretch shell 0.9 % and
-0.7 % (all judged: above 0.2 %). The whole held-out study is `make adequacy` (README)."""
+0.7 % (all judged: above 0.2 %). The whole held-out study is `make adequacy` (docs/findings.md)."""
 
 from dataclasses import replace
 import json

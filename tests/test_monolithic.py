@@ -9,7 +9,7 @@ operators (flat and curved, bodies and shells with and without thickness stretch
 load are right. Both loops are checked on the paper's scene: the accelerated active-set
 loop at the default penalty, and the paper's own loop (gamma = 1/theta, fixed
 relaxation) at a penalty soft enough for it to converge in a few hundred iterations (at
-theta = 1e-3 it would need ~10^5, README).
+theta = 1e-3 it would need ~10^5, docs/method.md).
 
 Equilibrium (to 1e-5 relative): the contact force, the force on the bonds, the stamp's
 reaction on the indenter and the base's support reaction (consistent nodal reactions)

@@ -66,7 +66,7 @@ def test_the_paper_scene_gives_its_pinned_numbers(default_run):
 def test_the_default_penalty_moves_the_peak_by_the_penalty_error(default_run, tmp_path):
     """At the default penalty (2.5e-4) the peak contact stress moves from the pinned one
     (1e-3) by the difference of their penalty errors, 0.053 % - 0.013 % (monolithic
-    estimates of results/penalty.csv and README, "Penalty"): measured 0.040 %."""
+    estimates of results/penalty.csv and docs/method.md, "Penalty"): measured 0.040 %."""
     stiffer = solve(paper_scene(), Settings(), tmp_path)
     assert stiffer["settings"]["theta"] == pytest.approx(2.5e-4, rel=1e-12)
     shift = stiffer["peak_contact_stress"] / default_run["peak_contact_stress"] - 1
