@@ -8,10 +8,12 @@ hashes must tell the two laws apart.
 """
 
 import json
+import os
 import re
 import shutil
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pandas as pd
@@ -139,3 +141,28 @@ def test_forms_edited_while_a_sweep_runs_leave_no_stale_point(forms, tmp_path):
              for h2 in (0.25, 0.125)]
     assert table["peak_contact_stress"].tolist() == pytest.approx(
         [_peak(result) for result in fresh], rel=1e-9)
+
+
+def test_a_form_edited_while_a_run_goes_on_is_said(forms, tmp_path):
+    """The run paused once its workers have started (orchestrate/faults.py), a form
+    edited meanwhile: the run cannot tell which version its workers read, and says so
+    (warning forms_edited); its provenance keeps the hashes of its start."""
+    marker, out = tmp_path / "paused", tmp_path / "run"
+    before = forms_digest()
+    env = dict(os.environ, ORCHESTRATE_PAUSE_AT="setup", ORCHESTRATE_PAUSE_FILE=str(marker))
+    run = subprocess.Popen([sys.executable, "-m", "orchestrate", "solve", "--quiet", "--out",
+                            str(out)], cwd=PROJECT_DIR, env=env, stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not marker.exists():
+        assert run.poll() is None and time.monotonic() < deadline, run.communicate()
+        time.sleep(0.02)
+    with open(forms / "shell.idp", "a") as form:
+        form.write("// an edit while the run goes on\n")
+    marker.unlink()
+    _, stderr = run.communicate(timeout=300)
+    assert run.returncode == 0, stderr
+    summary = json.loads((out / "summary.json").read_text())
+    assert "forms_edited" in [w["code"] for w in summary["warnings"]]
+    assert "warning (forms_edited)" in stderr
+    assert summary["provenance"]["forms_digest"] == before != forms_digest()
