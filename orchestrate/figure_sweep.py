@@ -15,7 +15,8 @@ import os
 from pathlib import Path
 
 from .figure_scenes import DRAWS
-from .sweep import kill_pool, load_sweep, named_points, run_status
+from .provenance import forms_digest
+from .sweep import kill_pool, load_sweep, named_points, point_stamp, run_status, why_stale
 
 
 def figure_runs(sweep_file, sweep_dir):
@@ -28,9 +29,16 @@ def figure_runs(sweep_file, sweep_dir):
 
 def ready_figures(runs, drawn):
     """The figures of ``runs`` (figure_runs) not in ``drawn`` whose runs have all
-    converged."""
-    return [figure for figure, folders in runs.items() if figure not in drawn
-            and all(run_status(folder) == "converged" for folder in folders)]
+    converged as the sweep's points from its inputs now (a run solved before the scene
+    or the forms were edited is not ready: it is run again)."""
+    forms = forms_digest()
+
+    def current(folder):
+        stamp = point_stamp(folder.parent.parent, folder.name)
+        return (run_status(folder) == "converged" and stamp is not None
+                and why_stale(folder, stamp, forms) is None)
+    return [figure for figure, folders in runs.items()
+            if figure not in drawn and all(current(folder) for folder in folders)]
 
 
 def _start_drawing(driver):

@@ -2,23 +2,19 @@
 
 A point {eps_u: 1e-6, model: "shell", h2: 0.125} runs in
 ``eps_u=1e-06_model=shell_h2=0.125``: its keys in the file's order ([fixed] first, then
-the grid's or run's), numbers as ``:g`` writes them, lists comma-joined, the brackets of ``coating[2].E`` dropped and every character
-that is not a letter, a digit or one of ``. , _ + = -`` replaced by ``_``. A name is a
-function of the point's values alone, so a point keeps its folder when the sweep grows,
-unless:
+the grid's or run's), numbers as ``:g`` writes them, lists comma-joined, the brackets of
+``coating[2].E`` dropped and every character that is not a letter, a digit or one of
+``. , _ + = -`` replaced by ``_``. A name is a function of the point's values alone, so a
+point keeps its folder when the sweep grows, unless:
 
 - two points of the sweep would share a name (values that differ only in replaced
   characters, 5 and 5.0, beyond ``:g``'s six digits, or in letter case, which some file
-  systems ignore): each of them
-  then takes ``@`` and a short hash of its values as a suffix (a point that had the
-  name alone before is run again, into its suffixed folder: which point the old folder
-  holds is not known);
+  systems ignore): each of them then takes ``@`` and a short hash of its values as a
+  suffix (a point that had the name alone before is run again, into its suffixed
+  folder: which point the old folder holds is not known);
 - the name would be longer than MAX_LENGTH: it is cut, and takes the suffix.
 
 No name without ``@`` holds one, so a suffixed name is never another point's plain name.
-
-Sweeps written before named their folders by the hash alone (``legacy_name``); a sweep
-resumed in such a folder renames them (orchestrate/sweep.py, adopt_legacy_folders).
 """
 
 import hashlib
@@ -37,11 +33,6 @@ def values_hash(values):
     """The hex digest of a point's values (the order of its keys aside)."""
     text = json.dumps({k: values[k] for k in sorted(values)}, sort_keys=True)
     return hashlib.sha1(text.encode()).hexdigest()
-
-
-def legacy_name(values):
-    """A run folder's name in sweeps written before folders were named by their values."""
-    return values_hash(values)[:12]
 
 
 def value_text(value):

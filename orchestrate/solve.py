@@ -57,13 +57,14 @@ from .warm_start import state_from_run
 
 
 def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None,
-          session=None):
+          session=None, sweep_point=None):
     """Solve the scene; write results into ``out_dir``; return the summary dict.
     ``start_from``: a finished run's folder whose interface state is the first iterate
     (orchestrate/warm_start.py; ignored where it shares no interface, and where a coarse
     level starts the run from its own solution of the scene). ``session``: a
     Session (orchestrate/session.py) that keeps workers from scene to scene; without
-    one, the run's workers stop with it.
+    one, the run's workers stop with it. ``sweep_point``: the sweep and inputs a sweep's
+    run records (orchestrate/sweep.py), or None.
 
     Before any work: ParameterError for a scene the settings cannot solve, a problem
     too large for the machine, or an output folder another run holds or is writing
@@ -124,6 +125,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             "dofs": dofs,
             "workers_kept": kept,
             "provenance": provenance(forms),
+            "sweep_point": sweep_point,
             "warnings": list(plan.warnings),
         }
         write_history(os.path.join(scratch, "history.csv"), loop.history)

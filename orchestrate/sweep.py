@@ -22,17 +22,19 @@ scene file (relative to the sweep file; default: the paper's scene):
 
 Every point is one run folder, results/<name>/runs/<run>/, written as `solve` writes it
 and named by the point's values (orchestrate/run_names.py), e.g.
-eps_u=1e-06_model=shell_h2=1, so a point keeps its folder when the sweep grows (the
-hash-named folders of older sweeps are renamed). A run folder appears only once
-complete, so re-running a sweep skips it, and a sweep interrupted by Ctrl-C, a killed
-driver or a full disk loses no finished run. Every point is checked before the first run
+eps_u=1e-06_model=shell_h2=1, so a point keeps its folder when the sweep grows. A run
+folder appears only once complete, so re-running a sweep skips it, and a sweep
+interrupted by Ctrl-C, a killed driver or a full disk loses no finished run. A finished
+run counts as its point only if it was solved by this sweep (its manifest, sweep.json,
+says so), from the point's inputs now (its scene file and settings) and with the forms'
+files now: other runs are run again, named with the reason (MANIFEST). Every point is checked before the first run
 (its scene, settings and size): a bad one refuses the sweep, all bad points named. Runs
 that diverge or stagnate are rows with their reason; runs that fail for a reason outside
 their numbers (a worker killed, a full disk) are rows with the cause, and are run again
 when the sweep is resumed (``--retry-failed``: those that did not converge too). All
 summaries gather into results/<name>/runs.csv, one row per point in the file's order
 (its column "id": the run folder's name). A lock in the sweep's folder keeps a second
-sweep out; the sweep touches nothing in it but its runs and its table.
+sweep out; the sweep touches nothing in it but its runs, its table and its manifest.
 
 Engines: local processes (default, one run per core), or Dask distributed (``--engine
 dask`` with ``--scheduler tcp://HOST:PORT`` for a cluster sharing the results folder, or
@@ -42,12 +44,14 @@ more, then recorded as failed.
 """
 
 import concurrent.futures
+import hashlib
 import json
 import multiprocessing
 import os
 import re
 import sys
 import time
+import uuid
 from dataclasses import fields
 from itertools import product
 from pathlib import Path
@@ -60,7 +64,7 @@ from .folders import (RunFolder, hold_lock, release_lock, remove_dead_run_leftov
 from .outputs import write_json
 from .paraview import SWEEP_COLLECTION, write_sweep_collection
 from .provenance import forms_digest
-from .run_names import legacy_name, run_names, values_hash
+from .run_names import run_names, values_hash
 from .scene import Settings, scene_from_dict, to_dict
 from .scene_file import is_scene_key, read_toml, scene_and_settings, shorthand_values
 from .warm_start import nearest
@@ -70,7 +74,8 @@ NOT_CONVERGED = ("diverged", "stagnated", "max_iterations", "contact_zone")
 FAILED = NOT_CONVERGED + ("error",)
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]*")      # fullmatch: no trailing newline
 ATTEMPTS = 2           # a run whose worker process dies when alone is tried this often
-FORMS_PASSES = 2       # passes over points solved with forms edited during the sweep
+EDITED_PASSES = 2      # passes over points whose scene file or forms were edited while
+                       # the sweep ran
 SWEEPS_DIR = Path("results")   # a sweep's folder: results/<name> in the current folder
 
 
@@ -162,45 +167,106 @@ def named_points(points):
     return list(zip(run_names(distinct), distinct))
 
 
-def adopt_legacy_folders(runs_dir, runs):
-    """Give the run folders of a sweep written before folders were named by their values
-    (the hash of the values, legacy_name) their new names, so that their runs count as
-    done. The caller holds the sweep's lock: no run writes into these folders."""
-    for name, values in runs:
-        old, new = Path(runs_dir) / legacy_name(values), Path(runs_dir) / name
-        if old.is_dir() and not os.path.lexists(new):
-            os.rename(old, new)
+# ---- which sweep a run folder belongs to, and from what inputs ----------------------------
+
+# A sweep's folder holds MANIFEST: the sweep's identity (made when it first runs), its
+# file, and each point's values and inputs. Every run it solves records, in its
+# summary.json, that identity and the hash of the inputs it was solved from (its scene as
+# its file and values give it, units included, and its settings): a run folder is a
+# finished point of this sweep only if both match, and its forms are the files'
+# (orchestrate/provenance.py). So a sweep resumed after its scene file or a default was
+# edited runs the changed points again, and a run folder copied in from another sweep
+# is not taken for one of its points.
+MANIFEST = "sweep.json"
+
+
+def point_inputs(scene, settings):
+    """The hash of what a point is solved from: its scene and its settings."""
+    text = json.dumps({"scene": to_dict(scene), "settings": to_dict(settings)},
+                      sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def sweep_identity(sweep_dir, path, runs, inputs):
+    """The sweep's identity, from its manifest (made now if it has none), rewritten with
+    the points' values and inputs."""
+    manifest_path = Path(sweep_dir) / MANIFEST
+    try:
+        identity = json.loads(manifest_path.read_text())["sweep_id"]
+    except (OSError, ValueError, KeyError, TypeError):
+        identity = uuid.uuid4().hex
+    write_json(manifest_path, {"sweep_id": identity, "file": str(Path(path).resolve()),
+                               "points": {name: {"values": values, "inputs": inputs[name]}
+                                          for name, values in runs}})
+    return identity
+
+
+def point_stamp(sweep_dir, name):
+    """What a point's run must have recorded to count (summary.json's "sweep_point"),
+    from the manifest; None without one."""
+    try:
+        manifest = json.loads((Path(sweep_dir) / MANIFEST).read_text())
+        return {"sweep_id": manifest["sweep_id"],
+                "inputs": manifest["points"][name]["inputs"]}
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def why_stale(folder, stamp, forms):
+    """Why the run in ``folder``, which has an answer or a reason of its numbers, does
+    not count as the point of ``stamp`` solved with forms ``forms``; None if it does."""
+    try:
+        summary = json.loads((Path(folder) / "summary.json").read_text())
+    except (OSError, ValueError):
+        return "no summary"
+    recorded = summary.get("sweep_point") or {}
+    if recorded.get("sweep_id") != stamp["sweep_id"]:
+        return "not a run of this sweep (copied in, or older than its manifest)"
+    if recorded.get("inputs") != stamp["inputs"]:
+        return "its inputs changed (the scene file, a value or a default setting)"
+    if (summary.get("provenance") or {}).get("forms_digest") != forms:
+        return "solved with other FreeFEM forms than the files' now"
+    return None
 
 
 # ---- one run, in a worker process -----------------------------------------------------
 
-def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False, neighbours=None):
+def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False, neighbours=None,
+              sweep_id=None):
     """Solve one point into sweep_dir/runs/<name>/ unless it is done; return its name.
     ``neighbours``: the sweep's (name, values) points; the run starts from the nearest
     of them that has converged by then (orchestrate/warm_start.py), if any.
+    ``sweep_id``: the sweep's identity, recorded in the run with the hash of the inputs
+    it is solved from (its scene file is read now: an edit since the sweep started
+    shows in that hash).
 
     Runs in an engine's worker process; never raises for a failed run: the reason goes
     into the run's summary.json (a run that failed outside its numbers, "error", is
     run again; with ``retry_failed`` one that did not converge too)."""
     from .errors import RunFailed, SystemFailure
 
-    folder = Path(sweep_dir) / "runs" / name
+    runs_dir = Path(sweep_dir) / "runs"
+    folder = runs_dir / name
     try:
         scene, settings = point_scene(values, scene_dir)
+        stamp = {"sweep_id": sweep_id, "inputs": point_inputs(scene, settings)}
     except ParameterError:
-        scene = settings = None                # refused again below, into its report
-    if finished(folder, retry_failed, settings):
+        scene = settings = stamp = None        # refused again below, into its report
+    forms = forms_digest()
+    if stamp is not None and finished(folder, stamp, forms, retry_failed):
         return name
     try:
         from .solve import solve               # a worker process imports what it needs
         if settings is None:
             scene, settings = point_scene(values, scene_dir)
-        done = [(other, point) for other, point in neighbours or ()
-                if other != name and run_status(Path(sweep_dir) / "runs" / other) == "converged"]
+        done = [(other, point) for other, point in neighbours or () if other != name
+                and run_status(runs_dir / other) == "converged"
+                and point_stamp(sweep_dir, other) is not None
+                and why_stale(runs_dir / other, point_stamp(sweep_dir, other), forms) is None]
         source = nearest(values, done)
         solve(scene, settings, folder, overwrite=True,
-              start_from=Path(sweep_dir) / "runs" / source[0] if source else None,
-              session=_process_session)
+              start_from=runs_dir / source[0] if source else None,
+              session=_process_session, sweep_point=stamp)
     except RunFailed:
         pass                                   # solve wrote the report
     except (SystemFailure, ParameterError) as error:
@@ -213,44 +279,20 @@ def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False, neighb
     return name
 
 
-def finished(folder, retry_failed=False, settings=None, forms=None):
+def finished(folder, stamp, forms, retry_failed=False):
     """Whether a point's run is done: converged, or (unless retry_failed) not converged
-    for reasons of its numbers; given the point's ``settings``, solved with them; and
-    solved with the forms whose digest is ``forms`` (default: the files' now). A run
-    whose recorded settings differ (a default changed since it ran, e.g. the penalty's)
-    or whose forms were edited since (or are not recorded) is not done: it is run again
-    rather than mixed with the new ones."""
+    for reasons of its numbers; and solved as the point of ``stamp`` (this sweep, from
+    these inputs) with the forms of digest ``forms`` (why_stale). A run that is not is
+    run again rather than mixed with the new ones."""
     status = run_status(folder)
     done = status == "converged" or (status in NOT_CONVERGED and not retry_failed)
-    return (done and (settings is None or not _other_settings(folder, settings))
-            and not other_forms(folder, forms_digest() if forms is None else forms))
+    return done and why_stale(folder, stamp, forms) is None
 
 
 def _solved(folder):
     """Whether a point's folder holds a run that reached an answer or a reason of its
     numbers (not a report of a failure outside them)."""
     return run_status(folder) in ("converged",) + NOT_CONVERGED
-
-
-def other_forms(folder, forms):
-    """Whether the run in ``folder`` recorded forms other than those of digest ``forms``
-    (orchestrate/provenance.py), or none."""
-    try:
-        summary = json.loads((Path(folder) / "summary.json").read_text())
-    except (OSError, ValueError):
-        return True
-    return (summary.get("provenance") or {}).get("forms_digest") != forms
-
-
-def _other_settings(folder, settings):
-    """Whether the run in ``folder`` recorded a value other than ``settings``' for a
-    setting both know (a setting added since is not a difference)."""
-    try:
-        recorded = json.loads((Path(folder) / "summary.json").read_text()).get("settings")
-    except (OSError, ValueError):
-        return False
-    current = to_dict(settings)
-    return bool(recorded) and any(recorded[k] != current[k] for k in recorded if k in current)
 
 
 def run_status(folder):
@@ -421,7 +463,7 @@ class Progress:
 # ---- engines --------------------------------------------------------------------------
 
 def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False,
-              neighbours=None, run_done=lambda name=None: None):
+              neighbours=None, run_done=lambda name=None: None, sweep_id=None):
     """Local worker processes, at most ``jobs`` runs at once; ``pending`` holds (name,
     values) pairs.
 
@@ -439,7 +481,7 @@ def run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed=False,
 
         def submit(source):                    # taken from its list once submitted
             future = pool.submit(run_point, *source[0], str(sweep_dir), str(scene_dir),
-                                 retry_failed, neighbours)
+                                 retry_failed, neighbours, sweep_id)
             running[future] = source.pop(0)
         try:
             while queue or alone or running:
@@ -494,7 +536,7 @@ def kill_pool(pool):
 
 
 def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retry_failed=False,
-             neighbours=None, run_done=lambda name=None: None):
+             neighbours=None, run_done=lambda name=None: None, sweep_id=None):
     """Dask distributed: a local cluster of ``jobs`` workers, or a scheduler's. A task
     whose workers keep dying (Dask retries it) is recorded as failed."""
     from dask.distributed import Client, LocalCluster, as_completed
@@ -505,7 +547,7 @@ def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retr
     client = Client(scheduler or cluster)
     try:
         futures = {client.submit(run_point, name, values, str(sweep_dir), str(scene_dir),
-                                 retry_failed, neighbours, pure=False): name
+                                 retry_failed, neighbours, sweep_id, pure=False): name
                    for name, values in pending}
         progress.update(running=min(jobs, len(futures)))
         for future in as_completed(futures):
@@ -529,6 +571,40 @@ def _failed(sweep_dir, name):
 
 
 ENGINES = ("local", "dask")
+
+
+def _inputs(runs, scene_dir):
+    """{name: the point's inputs (point_inputs)}; a point whose scene can no longer be
+    built (its file edited into a bad one during the sweep) gets none, and is run into
+    its report."""
+    inputs = {}
+    for name, values in runs:
+        try:
+            inputs[name] = point_inputs(*point_scene(values, scene_dir))
+        except ParameterError:
+            inputs[name] = None
+    return inputs
+
+
+def _pending(sweep_dir, runs, retry_failed, stream, when="since they ran"):
+    """The points to run: those without a run that counts (finished); the finished
+    runs that no longer count are named, by reason."""
+    forms = forms_digest()
+    pending, stale = [], {}
+    for name, values in runs:
+        folder = Path(sweep_dir) / "runs" / name
+        stamp = point_stamp(sweep_dir, name)
+        if stamp and stamp["inputs"] and finished(folder, stamp, forms, retry_failed):
+            continue
+        pending.append((name, values))
+        if _solved(folder) and stamp:
+            reason = why_stale(folder, stamp, forms)
+            if reason:
+                stale.setdefault(reason, []).append(name)
+    for reason, names in stale.items():
+        print(f"{len(names)} point(s) {when}: {reason}; run again: {', '.join(names[:5])}"
+              f"{', ...' if len(names) > 5 else ''}", file=stream)
+    return pending
 
 
 def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=sys.stderr,
@@ -555,17 +631,8 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
     try:
         remove_dead_run_leftovers(sweep_dir / "runs")     # of a sweep killed before
         runs = named_points(points)
-        adopt_legacy_folders(sweep_dir / "runs", runs)
-        forms = forms_digest()
-        stale = [name for name, _ in runs if _solved(sweep_dir / "runs" / name)
-                 and other_forms(sweep_dir / "runs" / name, forms)]
-        if stale:
-            print(f"{len(stale)} finished point(s) were solved with other FreeFEM forms than "
-                  f"the files' now: run again ({', '.join(stale[:5])}"
-                  f"{', ...' if len(stale) > 5 else ''})", file=stream)
-        pending = [(name, values) for name, values in runs
-                   if not finished(sweep_dir / "runs" / name, retry_failed,
-                                   point_scene(values, scene_dir)[1], forms)]
+        identity = sweep_identity(sweep_dir, path, runs, _inputs(runs, scene_dir))
+        pending = _pending(sweep_dir, runs, retry_failed, stream)
         jobs = jobs or os.cpu_count() or 1
         progress = Progress(len(runs), stream)
         progress.done = len(runs) - len(pending)
@@ -575,24 +642,22 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
         try:
             run_done()
             neighbours = runs if warm_start_of(path) else None
-            for _ in range(1 + FORMS_PASSES):
+            for _ in range(1 + EDITED_PASSES):
                 if not pending:
                     break
                 if engine == "dask":
                     run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler,
-                             retry_failed, neighbours, run_done)
+                             retry_failed, neighbours, run_done, identity)
                 else:
                     run_local(pending, sweep_dir, scene_dir, jobs, progress, retry_failed,
-                              neighbours, run_done)
-                # forms edited while the sweep ran: the runs solved before are run again
-                forms = forms_digest()
-                pending = [(name, values) for name, values in runs
-                           if _solved(sweep_dir / "runs" / name)
-                           and other_forms(sweep_dir / "runs" / name, forms)]
-                if pending:
-                    print(f"FreeFEM forms edited during the sweep: {len(pending)} point(s) "
-                          "run again", file=stream)
-                    progress.done -= len(pending)
+                              neighbours, run_done, identity)
+                # a scene file or a form edited while the sweep ran: the points solved
+                # from the old one are run again
+                sweep_identity(sweep_dir, path, runs, _inputs(runs, scene_dir))
+                pending = [(name, values) for name, values in
+                           _pending(sweep_dir, runs, retry_failed, stream, "during the sweep")
+                           if _solved(sweep_dir / "runs" / name)]
+                progress.done -= len(pending)
         finally:
             progress.close()
             remove_dead_run_leftovers(sweep_dir / "runs")  # of runs whose process died

@@ -33,11 +33,8 @@ a column of a sweep's table; ``--strict`` makes them an exit status of their own
 Values are computed in the solver's b and E and said in the scene's units.
 """
 
-import math
-
 import numpy as np
 
-from . import answers
 from .model_choice import estimated_errors, not_estimated
 from .scene import SHELL_MODELS
 

@@ -20,6 +20,7 @@ from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
 from orchestrate.figure_sweep import figure_runs, ready_figures
 from orchestrate.figure_scenes import FIGURE_HEIGHTS, FIGURE_SCENES
 from orchestrate.paths import FIGURE_SWEEP
+from orchestrate.provenance import forms_digest
 from orchestrate.sweep import load_sweep, named_points
 from tests.conftest import PROJECT_DIR
 
@@ -107,7 +108,7 @@ def test_a_run_that_did_not_converge_keeps_out_only_the_figures_that_draw_it(fig
     """The figure sweep again on its finished runs, one of which (shell, b/2, 5E: fig. 4
     alone draws it) stopped as stagnated: figs. 3 and 5 are drawn, fig. 4 is not, and
     the command says that a run did not converge."""
-    shutil.copytree(figures / "figures" / "runs", tmp_path / "figures" / "runs")
+    shutil.copytree(figures / "figures", tmp_path / "figures")     # its runs and manifest
     summary = next((tmp_path / "figures" / "runs").glob("*model=shell_h2=0.5_E2=5")) / "summary.json"
     report = json.loads(summary.read_text())
     summary.write_text(json.dumps({**report, "status": "stagnated", "converged": False}))
@@ -119,18 +120,26 @@ def test_a_run_that_did_not_converge_keeps_out_only_the_figures_that_draw_it(fig
 
 def test_a_figure_is_drawn_once_the_runs_it_draws_have_converged(tmp_path):
     """fig. 5's runs, which the sweep file lists first, make it ready while the others
-    run; a run that did not converge keeps its figures out."""
+    run; a run that did not converge, or that is not the sweep's point from its inputs
+    now (another sweep's, or solved with other forms), keeps its figures out."""
     runs = figure_runs(FIGURE_SWEEP, tmp_path)
     assert (len(runs["fig3"]), len(runs["fig4"]), len(runs["fig5"])) == (8, 20, 12)
     points = [name for name, _ in named_points(load_sweep(FIGURE_SWEEP)[1])]
     assert [folder.name for folder in runs["fig5"]] == points[:12]
     assert {folder.name for figure in runs for folder in runs[figure]} == set(points)
+    (tmp_path / "sweep.json").write_text(json.dumps(
+        {"sweep_id": "this", "points": {name: {"inputs": "its"} for name in points}}))
 
-    def finish(folder, status):
+    def finish(folder, status, sweep="this", forms=forms_digest()):
         folder.mkdir(parents=True, exist_ok=True)
-        (folder / "summary.json").write_text(json.dumps({"status": status}))
+        (folder / "summary.json").write_text(json.dumps({
+            "status": status, "sweep_point": {"sweep_id": sweep, "inputs": "its"},
+            "provenance": {"forms_digest": forms}}))
+    finish(runs["fig5"][-1], "converged", sweep="another")
     for folder in runs["fig5"][:-1]:
         finish(folder, "converged")
+    assert ready_figures(runs, {}) == []
+    finish(runs["fig5"][-1], "converged", forms="other forms")
     assert ready_figures(runs, {}) == []
     finish(runs["fig5"][-1], "converged")
     assert ready_figures(runs, {}) == ["fig5"]

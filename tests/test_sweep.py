@@ -8,8 +8,10 @@ round-off in absolute terms (1e-12), not relative; its error estimate, that resi
 times the amplification the history showed (up to 10^3-10^4) and a margin, to 1e-4
 relative (measured: 4e-6)."""
 
+import io
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -160,7 +162,7 @@ def test_an_interrupted_sweep_resumes_with_the_missing_runs_only(sweep_file, uni
                              timeout=300)
     assert resumed.returncode == 1, resumed.stderr     # a run did not converge (by design)
     assert {name: os.stat(out / "runs" / name).st_mtime_ns for name in kept} == stamps
-    assert sorted(os.listdir(out)) == ["runs", "runs.csv", "sweep.pvd"]   # no lock
+    assert sorted(os.listdir(out)) == ["runs", "runs.csv", "sweep.json", "sweep.pvd"]  # no lock
     assert not [name for name in os.listdir(out / "runs") if name.startswith(".")]
     _same_table(pd.read_csv(out / "runs.csv"), pd.read_csv(uninterrupted[1] / "runs.csv"))
 
@@ -259,8 +261,8 @@ def test_a_second_sweep_of_one_folder_is_refused_and_foreign_files_stay(tmp_path
     assert second.returncode == 2 and "another sweep is running in it" in second.stderr
     _, stderr = first.communicate(timeout=300)
     assert first.returncode == 0, stderr
-    assert sorted(os.listdir(out)) == ["notes.txt", "runs", "runs.csv", "scratch", "sweep.pvd",
-                                       "tmp"]
+    assert sorted(os.listdir(out)) == ["notes.txt", "runs", "runs.csv", "scratch", "sweep.json",
+                                       "sweep.pvd", "tmp"]
     for name in ("tmp", "scratch"):
         assert (out / name / "keep.txt").read_text() == "mine"
 
@@ -369,26 +371,53 @@ def test_the_sweep_pvd_opens_every_converged_run_one_time_step_each(uninterrupte
     assert len(meshio.read(out / datasets[0].get("file")).points) > 0
 
 
-def test_a_run_solved_under_other_settings_is_run_again(tmp_path):
-    """A finished run whose recorded settings differ from its point's (a default changed
-    since, e.g. the penalty's) is run again rather than mixed with new runs; a run whose
-    summary lacks a setting added since is kept."""
+def test_a_run_solved_from_other_inputs_is_run_again(tmp_path):
+    """A sweep resumed after its scene file was edited runs the points that file changed
+    again, naming them and why, and keeps the others; a default changed since (its
+    recorded inputs are not the point's now) likewise."""
+    scene = tmp_path / "scene.toml"
+    scene.write_text((PROJECT_DIR / "orchestrate" / "scenes" / "paper.toml").read_text())
     path, out = tmp_path / "one.toml", tmp_path / "sweep"
-    path.write_text('[grid]\nh2 = [0.25]\n[fixed]\neps_u = 1e-4\nmodel = "elastic"\n')
+    path.write_text('[fixed]\nscene = "scene.toml"\neps_u = 1e-4\nmodel = "elastic"\n'
+                    '[grid]\nh2 = [0.25, 0.125]\n')
     first = run_sweep(path, out, jobs=1, stream=open(os.devnull, "w"))
-    summary_path = out / "runs" / first.id[0] / "summary.json"
-    summary = json.loads(summary_path.read_text())
-    theta = summary["settings"]["theta"]
-    del summary["settings"]["model_tolerance"]          # as if added after the run
-    summary_path.write_text(json.dumps(summary))
-    stamp = summary_path.stat().st_mtime_ns
-    run_sweep(path, out, jobs=1, stream=open(os.devnull, "w"))
-    assert summary_path.stat().st_mtime_ns == stamp     # kept
-    summary["settings"]["theta"] = 1e-3                 # as if solved under an old default
-    summary_path.write_text(json.dumps(summary))
+    summaries = [out / "runs" / name / "summary.json" for name in first.id]
+    stamps = [summary.stat().st_mtime_ns for summary in summaries]
     again = run_sweep(path, out, jobs=1, stream=open(os.devnull, "w"))
-    assert json.loads(summary_path.read_text())["settings"]["theta"] == theta
-    assert again.converged.all() and again.theta[0] == theta
+    assert [summary.stat().st_mtime_ns for summary in summaries] == stamps   # kept
+    scene.write_text(scene.read_text().replace("E = 1.0\nnu = 0.3\nmodel", 
+                                               "E = 2.0\nnu = 0.3\nmodel"))
+    said = io.StringIO()
+    edited = run_sweep(path, out, jobs=1, stream=said)
+    assert "2 point(s) since they ran: its inputs changed" in said.getvalue()
+    assert set(edited["E2"]) == {2.0} and set(again["E2"]) == {1.0}
+    assert (edited.peak_contact_stress != again.peak_contact_stress).all()
+    summary = json.loads(summaries[0].read_text())
+    summary["sweep_point"]["inputs"] = "solved under another default"
+    summaries[0].write_text(json.dumps(summary))
+    stamps = [path.stat().st_mtime_ns for path in summaries]
+    run_sweep(path, out, jobs=1, stream=open(os.devnull, "w"))
+    assert [path.stat().st_mtime_ns != stamp for path, stamp in zip(summaries, stamps)] == [
+        True, False]
+
+
+def test_a_run_folder_copied_from_another_sweep_is_not_taken_for_a_point(tmp_path):
+    """Two sweeps of the same point: a run folder copied from one into the other is not
+    that sweep's (its manifest does not say so): it is run again."""
+    path = tmp_path / "one.toml"
+    path.write_text('[fixed]\neps_u = 1e-4\nmodel = "elastic"\n[grid]\nh2 = [0.25]\n')
+    first = run_sweep(path, tmp_path / "a", jobs=1, stream=open(os.devnull, "w"))
+    run_sweep(path, tmp_path / "b", jobs=1, stream=open(os.devnull, "w"))
+    name = first.id[0]
+    shutil.rmtree(tmp_path / "b" / "runs" / name)
+    shutil.copytree(tmp_path / "a" / "runs" / name, tmp_path / "b" / "runs" / name)
+    said = io.StringIO()
+    run_sweep(path, tmp_path / "b", jobs=1, stream=said)
+    assert "1 point(s) since they ran: not a run of this sweep" in said.getvalue()
+    own = json.loads((tmp_path / "b" / "runs" / name / "summary.json").read_text())
+    manifest = json.loads((tmp_path / "b" / "sweep.json").read_text())
+    assert own["sweep_point"]["sweep_id"] == manifest["sweep_id"] != json.loads(
+        (tmp_path / "a" / "sweep.json").read_text())["sweep_id"]
 
 
 def test_a_sweep_writes_into_the_current_folder_and_says_where(tmp_path):

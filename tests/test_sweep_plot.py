@@ -9,10 +9,8 @@ about 7 s on 2 cores; every other test reads it or needs no FreeFEM."""
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
-import time
 
 import matplotlib.image
 import pandas as pd
@@ -22,7 +20,7 @@ from orchestrate.errors import ParameterError
 from orchestrate.plot import plot_run
 from orchestrate import plot_sweep as plot_sweep_module
 from orchestrate.plot_sweep import axis_label, plot_sweep, read_runs, select, split_columns
-from orchestrate.run_names import MAX_LENGTH, legacy_name, run_names
+from orchestrate.run_names import MAX_LENGTH, run_names
 from orchestrate.sweep import load_sweep, named_points, run_sweep
 from tests.conftest import PROJECT_DIR
 
@@ -107,25 +105,6 @@ def test_rows_follow_the_sweep_files_order(sweep):
     assert pd.read_csv(out / "runs.csv").id.tolist() == NAMES
     assert sorted(os.listdir(out / "runs")) == sorted(NAMES)
     assert table.status.tolist() == ["converged"] * 5 + ["max_iterations"]
-
-
-def test_a_sweep_of_hash_named_folders_is_resumed_without_running_again(sweep, tmp_path):
-    """A sweep folder written before folders were named by their values: its runs are
-    recognised (renamed, not run again) and the table is the same."""
-    path, out, table = sweep
-    old = tmp_path / "old"
-    shutil.copytree(out / "runs", old / "runs")
-    _, points = load_sweep(path)
-    for name, values in named_points(points):
-        os.rename(old / "runs" / name, old / "runs" / legacy_name(values))
-    inodes = {legacy_name(v): os.stat(old / "runs" / legacy_name(v)).st_ino for v in points}
-    start = time.monotonic()
-    resumed = run_sweep(path, old, jobs=2, stream=open(os.devnull, "w"))
-    assert time.monotonic() - start < 10                  # nothing solved again
-    assert sorted(os.listdir(old / "runs")) == sorted(NAMES)
-    assert {legacy_name(v): os.stat(old / "runs" / n).st_ino
-            for n, v in named_points(points)} == inodes   # the same folders, renamed
-    assert resumed.equals(table)                          # read from the same summaries
 
 
 # ---- plot-sweep -----------------------------------------------------------------------
