@@ -41,19 +41,23 @@ class Result:
     history: pd.DataFrame
     fields: dict = field(default_factory=dict)   # subdomain name -> DataFrame
     files: dict = field(default_factory=dict, repr=False)
+    folder: Path = None                          # where save() last wrote it
 
     @property
     def answers(self):
         """What a coating engineer looks for (orchestrate/answers.py)."""
         return self.summary["answers"]
 
-    def save(self, out_dir, overwrite=False):
+    def save(self, out_dir, overwrite=False, remember=True):
         """Write the run's files into ``out_dir`` (it appears once complete, as a run of
-        the command line does; ``overwrite`` replaces an earlier run's folder)."""
+        the command line does; ``overwrite`` replaces an earlier run's folder); a run
+        started from this Result then names that folder."""
         with RunFolder(out_dir, overwrite) as folder:
             for name, data in self.files.items():
                 (Path(folder.scratch) / name).write_bytes(data)
             folder.commit()
+        if remember:
+            self.folder = Path(out_dir).resolve()
         return Path(out_dir)
 
 
@@ -106,10 +110,12 @@ def solve(scene, settings=None, progress=None, start_from=None, session=None,
     the summary) if the loop does not converge, SystemFailure."""
     scene, settings = _scene_and_settings(scene, settings, overrides)
     with tempfile.TemporaryDirectory(prefix="orchestrate-api-") as scratch:
+        start_name = None
         if isinstance(start_from, Result):       # its files, as a folder to read
-            start_from = start_from.save(Path(scratch) / "start")
+            start_name = str(start_from.folder) if start_from.folder else "a Result in memory"
+            start_from = start_from.save(Path(scratch) / "start", remember=False)
         out = Path(scratch) / "run"
         summary = run.solve(scene, settings, out, progress=progress, start_from=start_from,
-                            session=session)
+                            session=session, start_name=start_name)
         tables, fields, files = _read(out)
     return Result(summary=summary, fields=fields, files=files, **tables)

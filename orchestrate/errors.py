@@ -14,10 +14,12 @@
 """
 
 import errno
+import re
 import signal
 
 EXIT_CONVERGED, EXIT_NOT_CONVERGED, EXIT_REFUSED, EXIT_FAILED, EXIT_INTERNAL = 0, 1, 2, 3, 4
 EXIT_WARNINGS = 5
+LONGEST_WORD = 120     # characters of a word of a message (a path, a value) shown whole
 EXIT_INTERRUPTED = {signal.SIGINT: 130, signal.SIGTERM: 143, signal.SIGHUP: 129,
                     signal.SIGQUIT: 131}
 
@@ -30,8 +32,16 @@ class ParameterError(ValueError):
     another name (a command-line flag) can say so."""
 
     def __init__(self, message, key=None):
-        super().__init__(message)
+        super().__init__(_elided(message))
         self.key = key
+
+
+def _elided(message):
+    """The message with the middle of every word longer than LONGEST_WORD cut out: a
+    value of ten kilobytes is named, not echoed."""
+    return re.sub(r"\S{%d,}" % (LONGEST_WORD + 1),
+                  lambda word: f"{word[0][:48]}...({len(word[0])} characters)...{word[0][-16:]}",
+                  message)
 
 
 class RunFailed(RuntimeError):

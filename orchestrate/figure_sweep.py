@@ -16,7 +16,8 @@ from pathlib import Path
 
 from .figure_scenes import DRAWS
 from .provenance import forms_digest
-from .sweep import kill_pool, load_sweep, named_points, point_stamp, run_status, why_stale
+from .sweep import (kill_pool, load_sweep, named_points, point_stamp, read_manifest,
+                    run_status, why_stale)
 
 
 def figure_runs(sweep_file, sweep_dir):
@@ -31,10 +32,13 @@ def ready_figures(runs, drawn):
     """The figures of ``runs`` (figure_runs) not in ``drawn`` whose runs have all
     converged as the sweep's points from its inputs now (a run solved before the scene
     or the forms were edited is not ready: it is run again)."""
-    forms = forms_digest()
+    forms, manifests = forms_digest(), {}
 
     def current(folder):
-        stamp = point_stamp(folder.parent.parent, folder.name)
+        sweep_dir = folder.parent.parent
+        if sweep_dir not in manifests:
+            manifests[sweep_dir] = read_manifest(sweep_dir)
+        stamp = point_stamp(sweep_dir, folder.name, manifests[sweep_dir])
         return (run_status(folder) == "converged" and stamp is not None
                 and why_stale(folder, stamp, forms) is None)
     return [figure for figure, folders in runs.items()

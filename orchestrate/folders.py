@@ -40,6 +40,9 @@ YOUNG_SECONDS = 60        # a working folder without its lock is dead once this 
 
 class RunFolder:
     def __init__(self, path, overwrite=False, option="--out"):
+        if any(character in str(path) for character in "\n\r\0"):
+            raise ParameterError(f"{option} {str(path)!r}: a folder's path cannot hold a line "
+                                 "break or a NUL (the workers are told it on a line)", option)
         if os.path.islink(path):            # write where the link points, keep the link
             if not os.path.isdir(path):
                 raise ParameterError(f"{option} {path} is a symbolic link to no folder",

@@ -73,6 +73,7 @@ STRETCH_BOND = 0.03772                                  # B
 
 NU2_CALIBRATED = (0.1, 0.4)    # the coating Poisson ratios the estimate holds for
 END_MARGIN = 0.5               # a patch end this many thicknesses from the contact is in it
+BISECTIONS = 64                # halvings of [-60, 60] in log F: below a double's resolution
 
 
 # ---- the contact half-width ------------------------------------------------------------
@@ -132,7 +133,7 @@ def contact_half_width(scene):
     force = load.force
     if force is None:                     # bisection on log F: descent grows with F
         low, high = -60.0, 60.0
-        for _ in range(200):
+        for _ in range(BISECTIONS):
             middle = 0.5 * (low + high)
             if descent_of_force(scene, math.exp(middle)) < load.displacement:
                 low = middle

@@ -34,6 +34,13 @@ MODULUS_RATIO = 1e6            # the largest over the smallest modulus of a scen
 MODULUS_RANGE = (1e-20, 1e20)  # any unit of stress; beyond, squares and penalties overflow
 LOOSEST_EPS_U = 1e-3           # the paper's; within it the stopping test holds (robin.py)
 SMALLEST_LOAD = 1e-12          # a descent in b, a force in E b: below, results underflow
+# Every length of a scene, in b (the solver's unit of length, units.b): within these, a
+# scene can be meshed and its squares neither overflow nor lose their digits. A radius
+# beyond its bound is a flat face (leave it out); loads beyond theirs are strains of
+# millions.
+LENGTH_RANGE = (1e-6, 1e6)     # b: sizes, positions (in absolute value), thicknesses
+RADIUS_LIMIT = 1e12            # b
+LARGEST_LOAD = 1e6             # a descent in b, a force in E b
 PROFILES = ("circle", "parabola")
 FACE_MESHES = ("shaped", "flat")
 SHAPES = ("block", "roller")
@@ -49,6 +56,8 @@ DEFAULT_ROBIN = 2.0    # E/b
 # 126; at level 3 for 32, 48, 64, 96: 151, 141, 133, 139.
 TWO_LEVEL_ROBIN_PER_LENGTH = 4.0   # E: gamma = 4 E / element_size = 64 E/b at b/16
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
+MESH_LEVEL_LIMIT = 16   # the paper's mesh refined 16 times: about 7 million unknowns
+ELEMENT_SIZE_RANGE = (1e-4, None)   # b: the interface elements at mesh level 1
 # The accelerated loop's default penalty per unit length of an interface element (E):
 # theta = 2.5e-4 b/E on the paper's mesh (elements b/16), shrinking with the elements, so
 # that the penalty's error (0.013 % of the peak contact stress there, 0.0044 % at mesh
@@ -127,7 +136,8 @@ class Indenter:
             return 0.0 * x
         if self.profile == "parabola":
             return x ** 2 / (2.0 * self.radius)
-        return self.radius - (self.radius ** 2 - x ** 2) ** 0.5
+        # R - sqrt(R^2 - x^2) without its cancellation (a large radius lost every digit)
+        return x ** 2 / (self.radius + (self.radius ** 2 - x ** 2) ** 0.5)
 
     def slope(self, x):
         """d sag / dx."""
@@ -265,7 +275,52 @@ class Scene:
         self.load.check("load.")
         for number, coating in enumerate(self.coatings, start=1):
             coating.check(f"coating[{number}].")
+        self._check_magnitudes()
         self._check_layout()
+
+    def _lengths(self):
+        """(key, value) of every length of the scene, in its units."""
+        yield from ((f"indenter.{name}", getattr(self.indenter, name))
+                    for name in ("radius", "width", "height", "centre"))
+        yield from ((f"base.{name}", getattr(self.base, name))
+                    for name in ("width", "height", "radius", "bore"))
+        for number, coating in enumerate(self.coatings, start=1):
+            yield from ((f"coating[{number}].{name}", getattr(coating, name))
+                        for name in ("start", "end", "thickness"))
+        yield from (("contact_zone", z) for z in self.contact_zone or ())
+
+    def _check_magnitudes(self):
+        """Every length within LENGTH_RANGE b (a radius within RADIUS_LIMIT b), the load
+        within LARGEST_LOAD: checked before any square of them is taken."""
+        b, unit = self.units.b, self.units.length
+        low, high = LENGTH_RANGE
+        of_b = "" if unit == "b" else f" (b = {b:g} {unit}, units.b)"
+
+        def given(key, value, size):
+            return f"{key} = {value:g} {unit}" + ("" if unit == "b" else f" is {size:.3g} b")
+        for key, value in self._lengths():
+            if value is None or value == 0 or (key == "indenter.radius" and math.isinf(value)):
+                continue
+            _require(_finite(value), key, f"{key} = {value!r} must be a finite number")
+            size = abs(value) / b
+            limit = RADIUS_LIMIT if key.endswith("radius") else high
+            _require(size <= limit, key,
+                     f"{given(key, value, size)}: at most {limit:g} b{of_b}"
+                     + (": a larger radius is a flat face (leave it out)"
+                        if key == "indenter.radius" else ""))
+            positions = key.endswith(("centre", "start", "end")) or key == "contact_zone"
+            _require(positions or size >= low, key,
+                     f"{given(key, value, size)}: at least {low:g} b{of_b}: "
+                     "smaller, it cannot be meshed beside the others")
+        load = self.load
+        if load.force is not None:
+            _require(load.force <= LARGEST_LOAD * self.modulus * b, "load.force",
+                     f"load.force = {load.force:g} must be at most {LARGEST_LOAD:g} E b = "
+                     f"{LARGEST_LOAD * self.modulus * b:g}: beyond, strains of millions")
+        if load.displacement is not None:
+            _require(load.displacement <= LARGEST_LOAD * b, "load.displacement",
+                     f"load.displacement = {load.displacement:g} must be at most "
+                     f"{LARGEST_LOAD:g} b = {LARGEST_LOAD * b:g}")
 
     def patch_ends(self, coating):
         """The x1 of a patch's ends (a half model's symmetry axis is no end)."""
@@ -412,7 +467,15 @@ class Settings:
                  "inner_solve = 'direct' needs workers = 'persistent': a fresh process per "
                  "solve keeps no factorisation to probe the maps with")
         _positive_int("mesh_level", self.mesh_level)
+        _require(self.mesh_level <= MESH_LEVEL_LIMIT, "mesh_level",
+                 f"mesh_level = {self.mesh_level!r} must be at most {MESH_LEVEL_LIMIT}: each "
+                 "level divides every mesh size, and the paper's mesh at level "
+                 f"{MESH_LEVEL_LIMIT} already has millions of unknowns")
         _positive("element_size", self.element_size)
+        _require(self.element_size >= ELEMENT_SIZE_RANGE[0], "element_size",
+                 f"element_size = {self.element_size!r} must be at least "
+                 f"{ELEMENT_SIZE_RANGE[0]:g} b (a length in b, or with its unit in a scene with "
+                 "[units]): smaller, the faces need millions of elements")
         if self.theta is None:          # the default, tied to the mesh (frozen: set once)
             object.__setattr__(self, "theta", PAPER_THETA if self.method == "paper" else
                                THETA_PER_LENGTH * self.element_size / self.mesh_level)

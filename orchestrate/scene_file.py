@@ -32,6 +32,8 @@ from .scene import (Base, Coating, Indenter, Load, ParameterError, Scene, Settin
 from .units import INVERSE_LENGTH, LENGTH, SCENE_KINDS, units_from_table, value_in_units
 
 SCENES_DIR = PACKAGE_DIR / "scenes"
+LARGEST_FILE = 10_000_000      # bytes of a scene or sweep file (a sweep of 10^5 points
+                               # written out takes a few megabytes)
 PAPER_SCENE_FILE = SCENES_DIR / "paper.toml"
 
 _TABLES = {"indenter": Indenter, "base": Base, "coating": Coating, "load": Load}
@@ -131,8 +133,13 @@ def read_toml(path, what):
     reading or parsing it is refused naming the file."""
     path = Path(path)
     try:
-        with open(path, "rb") as f:
-            return tomllib.load(f)
+        if path.is_dir():
+            raise ParameterError(f"{what} {path} is a folder, not a file")
+        if path.stat().st_size > LARGEST_FILE:
+            raise ParameterError(f"{what} {path}: {path.stat().st_size} bytes, more than a "
+                                 f"{what} holds (at most {LARGEST_FILE} bytes)")
+        # utf-8-sig: a byte-order mark, which some editors write first, is no error
+        return tomllib.loads(path.read_bytes().decode("utf-8-sig"))
     except OSError as error:
         raise ParameterError(f"{what} {path}: {error.strerror}") from None
     except tomllib.TOMLDecodeError as error:
@@ -144,10 +151,25 @@ def read_toml(path, what):
 
 
 def load_scene(path):
-    """(Scene, settings values) of a scene file."""
+    """(Scene, settings values) of a scene file (parsed again only when its text
+    changed: a sweep builds every point from it)."""
     path = Path(path)
-    data = read_toml(path, "scene file")
-    return scene_from_table(data, path)
+    try:
+        key = (str(path.resolve()), path.read_bytes())
+    except OSError:
+        key = None                          # read_toml says why
+    if key is None or key not in _loaded:
+        loaded = scene_from_table(read_toml(path, "scene file"), path)
+        if key is None:
+            return loaded
+        if len(_loaded) >= 8:               # a sweep reads one scene file, or a few
+            _loaded.clear()
+        _loaded[key] = loaded
+    scene, settings = _loaded[key]
+    return scene, dict(settings)
+
+
+_loaded = {}
 
 
 def paper_scene(**shorthands):

@@ -53,15 +53,17 @@ from .state import StateLayout
 from .subdomains import start_subdomains, write_inputs
 from .units import dimensionless, express_run, scaled_summary, summary_units
 from .validity import Say, run_warnings, scene_warnings
-from .warm_start import state_from_run
+from .warm_start import start_state
 
 
 def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None,
-          session=None, sweep_point=None):
+          session=None, sweep_point=None, start_name=None):
     """Solve the scene; write results into ``out_dir``; return the summary dict.
     ``start_from``: a finished run's folder whose interface state is the first iterate
-    (orchestrate/warm_start.py; ignored where it shares no interface, and where a coarse
-    level starts the run from its own solution of the scene). ``session``: a
+    (orchestrate/warm_start.py: a run of this layout of bodies and interfaces, checked
+    before any work; not used where a coarse level starts the run from its own solution
+    of the scene); ``start_name``: what the summary calls it (default: its path).
+    ``session``: a
     Session (orchestrate/session.py) that keeps workers from scene to scene; without
     one, the run's workers stop with it. ``sweep_point``: the sweep and inputs a sweep's
     run records (orchestrate/sweep.py), or None.
@@ -74,8 +76,10 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     freefem.executable()             # a missing FreeFEM is reported before any work
     plan = prepare(scene, settings)
     scene, problem, model_choice, scales = plan.scene, plan.problem, plan.model_choice, plan.scales
+    start = (start_state(start_from, StateLayout(problem.interfaces))
+             if start_from is not None else None)         # checked before any work
     forms = forms_hashes()           # what the workers started now will compile
-    start = time.perf_counter()
+    started = time.perf_counter()
     with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
           contextlib.nullcontext(session) if session is not None else Session() as workers,
           CoarseLevel(problem) if settings.two_levels      # probes meanwhile
@@ -83,7 +87,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
         scratch = str(folder.scratch)
         files = write_inputs(problem, workdir)
         with start_subdomains(problem, settings, files, workers, scratch) as subdomains:
-            setup_seconds = time.perf_counter() - start
+            setup_seconds = time.perf_counter() - started
             checkpoint("setup")
             coarse = None
             if coarse_level is not None:        # a fine mesh: iterated with two levels
@@ -91,8 +95,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
                 coarse_level.close()
             # a coarse level solves this very scene's contact problem: a better start than
             # a neighbour's answer (fewer contact sets: measured 1-2 against 0-9 at level 3)
-            first_iterate = (state_from_run(start_from, StateLayout(problem.interfaces))
-                             if start_from is not None and coarse is None else None)
+            first_iterate = start if coarse is None else None
             loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate,
                                   subdomains.robin_maps, coarse)
             if loop.converged:
@@ -120,7 +123,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
             "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
             "inner_solve_used": _inner_solve_used(loop.history, coarse is not None),
-            "started_from": (str(start_from) if first_iterate is not None
+            "started_from": (start_name or str(start_from) if first_iterate is not None
                              and settings.method != "paper" else None),
             "dofs": dofs,
             "workers_kept": kept,
@@ -139,7 +142,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
         express_run(scratch, scales)         # every file in the scene's units
         summary = scaled_summary(summary, scales)
         summary["units"] = summary_units(scratch, scene.units, scales)
-        summary["wall_time_s"] = time.perf_counter() - start
+        summary["wall_time_s"] = time.perf_counter() - started
         write_json(os.path.join(scratch, "summary.json"), summary)
         checkpoint("committing")
         folder.commit()

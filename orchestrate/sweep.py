@@ -76,6 +76,7 @@ NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]*")      # fullmatch: no trailing n
 ATTEMPTS = 2           # a run whose worker process dies when alone is tried this often
 EDITED_PASSES = 2      # passes over points whose scene file or forms were edited while
                        # the sweep ran
+CHECK_REPORT_SECONDS = 5.0
 SWEEPS_DIR = Path("results")   # a sweep's folder: results/<name> in the current folder
 
 
@@ -133,13 +134,19 @@ def warm_start_of(path):
     return read_toml(path, "sweep file").get("warm_start", False)
 
 
-def check_points(points, scene_dir="."):
+def check_points(points, scene_dir=".", stream=sys.stderr):
     """Refuse the sweep, before any run, if any point's scene, settings or size is bad;
-    the message names every bad point."""
+    the message names every bad point. A long check says how far it is, every
+    CHECK_REPORT_SECONDS (about a millisecond a point)."""
     from .solve import prepare
 
     problems = []
+    last_report = time.monotonic()
     for number, values in enumerate(points, start=1):
+        if time.monotonic() - last_report > CHECK_REPORT_SECONDS:
+            stream.write(f"checking the sweep's points: {number - 1} of {len(points)}\n")
+            stream.flush()
+            last_report = time.monotonic()
         try:
             scene, settings = point_scene(values, scene_dir)
             prepare(scene, settings)
@@ -201,14 +208,22 @@ def sweep_identity(sweep_dir, path, runs, inputs):
     return identity
 
 
-def point_stamp(sweep_dir, name):
-    """What a point's run must have recorded to count (summary.json's "sweep_point"),
-    from the manifest; None without one."""
+def read_manifest(sweep_dir):
+    """The sweep's manifest, or None."""
     try:
-        manifest = json.loads((Path(sweep_dir) / MANIFEST).read_text())
+        return json.loads((Path(sweep_dir) / MANIFEST).read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def point_stamp(sweep_dir, name, manifest=None):
+    """What a point's run must have recorded to count (summary.json's "sweep_point"),
+    from the manifest (read now unless given); None without one."""
+    manifest = read_manifest(sweep_dir) if manifest is None else manifest
+    try:
         return {"sweep_id": manifest["sweep_id"],
                 "inputs": manifest["points"][name]["inputs"]}
-    except (OSError, ValueError, KeyError, TypeError):
+    except (KeyError, TypeError):
         return None
 
 
@@ -259,14 +274,22 @@ def run_point(name, values, sweep_dir, scene_dir=".", retry_failed=False, neighb
         from .solve import solve               # a worker process imports what it needs
         if settings is None:
             scene, settings = point_scene(values, scene_dir)
+        manifest = read_manifest(sweep_dir)
         done = [(other, point) for other, point in neighbours or () if other != name
                 and run_status(runs_dir / other) == "converged"
-                and point_stamp(sweep_dir, other) is not None
-                and why_stale(runs_dir / other, point_stamp(sweep_dir, other), forms) is None]
+                and point_stamp(sweep_dir, other, manifest) is not None
+                and why_stale(runs_dir / other, point_stamp(sweep_dir, other, manifest),
+                              forms) is None]
         source = nearest(values, done)
-        solve(scene, settings, folder, overwrite=True,
-              start_from=runs_dir / source[0] if source else None,
-              session=_process_session, sweep_point=stamp)
+        try:
+            solve(scene, settings, folder, overwrite=True,
+                  start_from=runs_dir / source[0] if source else None,
+                  session=_process_session, sweep_point=stamp)
+        except ParameterError as error:
+            if error.key != "start_from":
+                raise
+            solve(scene, settings, folder, overwrite=True, session=_process_session,
+                  sweep_point=stamp)              # a neighbour of another layout: cold
     except RunFailed:
         pass                                   # solve wrote the report
     except (SystemFailure, ParameterError) as error:
@@ -550,7 +573,7 @@ def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retr
                                  retry_failed, neighbours, sweep_id, pure=False): name
                    for name, values in pending}
         progress.update(running=min(jobs, len(futures)))
-        for future in as_completed(futures):
+        for returned, future in enumerate(as_completed(futures), start=1):
             name = futures[future]
             try:
                 future.result()
@@ -558,7 +581,8 @@ def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retr
                 write_report(Path(sweep_dir) / "runs" / name, {
                     "status": "error", "converged": False,
                     "reason": "the Dask workers running it kept dying (killed, or out of memory)"})
-            progress.update(done=1, failed=_failed(sweep_dir, name))
+            progress.update(done=1, failed=_failed(sweep_dir, name),
+                            running=min(jobs, len(futures) - returned))
             run_done(name)
     finally:
         client.close()
@@ -589,11 +613,11 @@ def _inputs(runs, scene_dir):
 def _pending(sweep_dir, runs, retry_failed, stream, when="since they ran"):
     """The points to run: those without a run that counts (finished); the finished
     runs that no longer count are named, by reason."""
-    forms = forms_digest()
+    forms, manifest = forms_digest(), read_manifest(sweep_dir)
     pending, stale = [], {}
     for name, values in runs:
         folder = Path(sweep_dir) / "runs" / name
-        stamp = point_stamp(sweep_dir, name)
+        stamp = point_stamp(sweep_dir, name, manifest)
         if stamp and stamp["inputs"] and finished(folder, stamp, forms, retry_failed):
             continue
         pending.append((name, values))
@@ -620,7 +644,7 @@ def run_sweep(path, out=None, engine="local", jobs=None, scheduler=None, stream=
         raise ParameterError(f"--jobs = {jobs} must be a positive number")
     from . import freefem
     freefem.executable()                             # before any work
-    check_points(points, scene_dir)
+    check_points(points, scene_dir, stream)
     sweep_dir = Path(out) if out else SWEEPS_DIR / name
     try:
         (sweep_dir / "runs").mkdir(parents=True, exist_ok=True)

@@ -35,7 +35,7 @@ Values are computed in the solver's b and E and said in the scene's units.
 
 import numpy as np
 
-from .model_choice import estimated_errors, not_estimated
+from .model_choice import contact_half_width, estimated_errors, not_estimated
 from .scene import SHELL_MODELS
 
 STRAIN_LIMIT = 0.01          # linear elasticity's strains: beyond 1 % its error is of that order
@@ -65,6 +65,7 @@ def scene_warnings(scene, given, settings, say):
     units (the estimate's quantities are ratios: any consistent units do)."""
     warnings = []
     depth = base_depth(scene.base)
+    a = None                               # the contact half-width, once needed
     for number, (coating, asked) in enumerate(zip(scene.coatings, given.coatings), start=1):
         share = coating.thickness / depth
         if share > COATING_SHARE:
@@ -75,7 +76,8 @@ def scene_warnings(scene, given, settings, say):
                 "body; the base's clamping acts through it", share, COATING_SHARE))
         if asked.model not in SHELL_MODELS:
             continue
-        reason = not_estimated(scene, coating)
+        a = contact_half_width(scene) if a is None else a
+        reason = not_estimated(scene, coating, a)
         if reason:
             warnings.append(_warning(
                 "model_uncalibrated", f"coating[{number}] is modelled as a {coating.model}, "
@@ -83,7 +85,7 @@ def scene_warnings(scene, given, settings, say):
                 f"{say.units.length}); model = \"elastic\" or \"auto\" is exact for the "
                 "coating"))
             continue
-        error = max(estimated_errors(scene, coating)[coating.model].values())
+        error = max(estimated_errors(scene, coating, a)[coating.model].values())
         if error > settings.model_tolerance:
             warnings.append(_warning(
                 "model_error", f"coating[{number}] is modelled as a {coating.model}, whose "

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .errors import ParameterError
 from .scene import scene_from_dict
 from .units import dimensionless
 
@@ -59,18 +60,60 @@ def state_from_tables(summary, traces, contact, interface, layout):
     return layout.pack(blocks) if matched else None
 
 
-def state_from_run(folder, layout):
-    """The state of the finished run in ``folder`` (state_from_tables), or None."""
+# The columns a start reads, by table
+_COLUMNS = {"traces": ("interface", "s", "a_t", "a_n", "b_t", "b_n"),
+            "contact": ("interface", "s", "sigma_n"),
+            "interface": ("interface", "s", "sigma_n", "sigma_t")}
+
+
+def start_state(folder, layout):
+    """The first iterate from the finished run in ``folder`` (state_from_tables), checked
+    before any work: ParameterError naming ``start_from`` if the folder is missing or not
+    a run's, the run did not converge, a table is missing, unreadable or not finite, or
+    the run's interfaces are not this scene's (another layout of bodies and patches)."""
     folder = Path(folder)
+
+    def refuse(why):
+        raise ParameterError(f"start_from {folder}: {why}", "start_from")
+    if not folder.exists():
+        refuse("no such folder")
+    if not folder.is_dir():
+        refuse("not a folder (a run's output folder is due)")
     try:
         summary = json.loads((folder / "summary.json").read_text())
-        if not summary.get("converged"):
-            return None
-        tables = [pd.read_csv(folder / f"{name}.csv")
-                  for name in ("traces", "contact", "interface")]
     except (OSError, ValueError):
-        return None
-    return state_from_tables(summary, *tables, layout)
+        refuse("holds no finished run (no readable summary.json)")
+    if not isinstance(summary, dict) or not isinstance(summary.get("scene"), dict):
+        refuse("its summary.json is not a run's")
+    if not summary.get("converged"):
+        refuse(f"its run did not converge ({summary.get('status')}): nothing to start from")
+    try:
+        scene_from_dict(summary["scene"])
+    except (ParameterError, KeyError, TypeError, ValueError) as error:
+        refuse(f"its summary's scene is not readable ({error})")
+    tables = {}
+    for name, columns in _COLUMNS.items():
+        try:
+            table = pd.read_csv(folder / f"{name}.csv")
+        except (OSError, ValueError, pd.errors.EmptyDataError):
+            refuse(f"{name}.csv is missing or unreadable")
+        missing = [c for c in columns if c not in table.columns]
+        if missing:
+            refuse(f"{name}.csv lacks the column(s) {', '.join(missing)}")
+        numbers = table[list(columns[1:])]
+        if name == "traces":        # a contact's tangential traces are empty by design
+            numbers = numbers[["s", "a_n", "b_n"]]
+        if not np.isfinite(numbers.to_numpy(dtype=float)).all():
+            refuse(f"{name}.csv holds values that are not finite numbers")
+        tables[name] = table
+    found = set(tables["traces"].interface)
+    expected = {face.name for face in layout.interfaces}
+    if found != expected:
+        refuse(f"its run has the interfaces {sorted(found)}, this scene "
+               f"{sorted(expected)}: a run of another layout of bodies and patches cannot "
+               "start it")
+    return state_from_tables(summary, tables["traces"], tables["contact"],
+                             tables["interface"], layout)
 
 
 def nearest(values, candidates):
