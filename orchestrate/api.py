@@ -9,20 +9,20 @@
     orchestrate.solve(other_scene, start_from=result)   # from a nearby answer: faster
 
 The run itself is the command line's (orchestrate/solve.py): same checks, same files;
-here it writes into a private temporary folder, which is read back and removed.
+here it writes into a private temporary folder, which is read back and removed (and,
+if the process is killed meanwhile, removed by the next run: orchestrate/folders.py).
 """
 
 from dataclasses import dataclass, field, fields
 import io
 import os
 from pathlib import Path
-import tempfile
 
 import pandas as pd
 
 from . import solve as run
 from .errors import ParameterError
-from .folders import RunFolder
+from .folders import RunFolder, WorkFolder
 from .scene import Scene, Settings
 from .scene_file import apply_overrides, scene_and_settings, settings_of
 
@@ -109,7 +109,7 @@ def solve(scene, settings=None, progress=None, start_from=None, session=None,
     orchestrate/solve.py's solve does: ParameterError before any work, RunFailed (with
     the summary) if the loop does not converge, SystemFailure."""
     scene, settings = _scene_and_settings(scene, settings, overrides)
-    with tempfile.TemporaryDirectory(prefix="orchestrate-api-") as scratch:
+    with WorkFolder(WorkFolder.API_PREFIX) as scratch:     # removed after a killed process too
         start_name = None
         if isinstance(start_from, Result):       # its files, as a folder to read
             start_name = str(start_from.folder) if start_from.folder else "a Result in memory"

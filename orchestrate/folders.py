@@ -204,19 +204,23 @@ def release_lock(handle):
 
 
 class WorkFolder:
-    """A run's private working folder under ``tempfile.gettempdir()``."""
+    """A run's private working folder under ``tempfile.gettempdir()``: ``robin-*`` for
+    its workers, ``orchestrate-api-*`` for a run of the Python API (orchestrate/api.py,
+    which reads the run's files back from it)."""
 
     PREFIX = "robin-"
+    API_PREFIX = "orchestrate-api-"
     LOCK = ".alive"
 
-    def __init__(self):
+    def __init__(self, prefix=PREFIX):
+        self.prefix = prefix
         self.path = None
         self._fd = None
 
     def __enter__(self):
         remove_dead_work_folders()
         try:
-            self.path = tempfile.mkdtemp(prefix=self.PREFIX)
+            self.path = tempfile.mkdtemp(prefix=self.prefix)
             taking = os.path.join(self.path, self.LOCK + ".taking")
             self._fd = os.open(taking, os.O_RDWR | os.O_CREAT, 0o644)
             fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -241,7 +245,8 @@ def remove_dead_work_folders(directory=None):
     locking it) once older than YOUNG_SECONDS."""
     directory = Path(directory or tempfile.gettempdir())
     try:
-        candidates = list(directory.glob(f"{WorkFolder.PREFIX}*"))
+        candidates = [folder for prefix in (WorkFolder.PREFIX, WorkFolder.API_PREFIX)
+                      for folder in directory.glob(f"{prefix}*")]
     except OSError:
         return
     for folder in candidates:

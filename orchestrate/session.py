@@ -27,6 +27,8 @@ the next run removes (folders.remove_dead_work_folders).
 
 import hashlib
 import itertools
+import threading
+import weakref
 
 import numpy as np
 
@@ -93,12 +95,18 @@ class Entry:
 
 
 class Session:
-    """The workers of the last scene served, by fingerprint (see the module's text)."""
+    """The workers of the last scene served, by fingerprint (see the module's text).
+
+    One scene at a time: solve() holds the session's lock for the whole run, so scenes
+    solved with one Session from several threads are solved one after the other, each
+    with the answer it has alone (requests of two runs never interleave on a worker).
+    ``with Session() as session:`` stops its workers at the end of the block; a Session
+    never closed stops them when it is garbage-collected, or when the interpreter exits."""
 
     def __init__(self):
-        self._folder = self._path = None
-        self._entries = {}
-        self._names = itertools.count()
+        self._workers = _Workers()
+        self.lock = threading.RLock()
+        self._finalizer = weakref.finalize(self, self._workers.close)
 
     def __enter__(self):
         return self
@@ -106,28 +114,10 @@ class Session:
     def __exit__(self, *exc):
         self.close()
 
-    @property
-    def folder(self):
-        if self._folder is None:
-            folder = WorkFolder()
-            self._path = folder.__enter__()
-            self._folder = folder
-        return self._path
-
     def take(self, name, script, arguments, fingerprint, origin, timeout):
         """The entry of a worker that reads what ``fingerprint`` stands for: kept from an
         earlier scene, or started now (not yet ready: call ``ready``)."""
-        forms = forms_digest()
-        entry = self._entries.get(fingerprint)
-        if (entry is None or entry.worker.process.poll() is not None   # died
-                or entry.forms != forms):                                # edited forms
-            self.drop(fingerprint)
-            worker = Worker(name, script, arguments, self.folder, timeout,
-                            stem=f"{name}-{next(self._names)}")
-            entry = self._entries[fingerprint] = Entry(worker, None, np.asarray(origin), forms)
-        entry.worker.timeout = timeout
-        entry.scenes += 1
-        return entry
+        return self._workers.take(name, script, arguments, fingerprint, origin, timeout)
 
     def ready(self, entry):
         """Wait for a new worker's set-up; return its dof count."""
@@ -137,20 +127,70 @@ class Session:
 
     def keep_only(self, fingerprints):
         """End of a scene: stop every worker it did not use."""
-        for fingerprint in [f for f in self._entries if f not in fingerprints]:
+        self._workers.keep_only(fingerprints)
+
+    def drop(self, fingerprint):
+        self._workers.drop(fingerprint)
+
+    @property
+    def workers(self):
+        """The kept workers."""
+        return [entry.worker for entry in self._workers.entries.values()]
+
+    @property
+    def folder(self):
+        """The folder of the kept workers' FIFOs and logs."""
+        return self._workers.folder
+
+    def close(self):
+        """Stop every worker; remove their folder."""
+        self._finalizer()
+
+
+class _Workers:
+    """A Session's kept workers and their folder: apart from the Session, so that its
+    finaliser can stop them without keeping it alive."""
+
+    def __init__(self):
+        self.folder_owner = self.path = None
+        self.entries = {}
+        self.names = itertools.count()
+
+    @property
+    def folder(self):
+        if self.folder_owner is None:
+            owner = WorkFolder()
+            self.path = owner.__enter__()
+            self.folder_owner = owner
+        return self.path
+
+    def take(self, name, script, arguments, fingerprint, origin, timeout):
+        forms = forms_digest()
+        entry = self.entries.get(fingerprint)
+        if (entry is None or entry.worker.process.poll() is not None   # died
+                or entry.forms != forms):                                # edited forms
+            self.drop(fingerprint)
+            worker = Worker(name, script, arguments, self.folder, timeout,
+                            stem=f"{name}-{next(self.names)}")
+            entry = self.entries[fingerprint] = Entry(worker, None, np.asarray(origin), forms)
+        entry.worker.timeout = timeout
+        entry.scenes += 1
+        return entry
+
+    def keep_only(self, fingerprints):
+        for fingerprint in [f for f in self.entries if f not in fingerprints]:
             self.drop(fingerprint)
 
     def drop(self, fingerprint):
-        entry = self._entries.pop(fingerprint, None)
+        entry = self.entries.pop(fingerprint, None)
         if entry is not None:
             entry.worker.stop()
 
     def close(self):
-        """Stop every worker; remove their folder."""
         try:
-            for fingerprint in list(self._entries):
+            for fingerprint in list(self.entries):
                 self.drop(fingerprint)
         finally:
-            if self._folder is not None:
-                self._folder.__exit__()
-                self._folder = None
+            if self.folder_owner is not None:
+                self.folder_owner.__exit__()
+                self.folder_owner = None

@@ -82,6 +82,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     started = time.perf_counter()
     with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
           contextlib.nullcontext(session) if session is not None else Session() as workers,
+          workers.lock,                          # one scene at a time per session
           CoarseLevel(problem) if settings.two_levels      # probes meanwhile
           else contextlib.nullcontext() as coarse_level):
         scratch = str(folder.scratch)

@@ -7,6 +7,7 @@ import os
 import subprocess
 import sys
 import sysconfig
+import time
 
 import numpy as np
 import pytest
@@ -85,3 +86,28 @@ def test_an_unknown_setting_is_refused_by_name_before_any_work():
     from orchestrate.errors import ParameterError
     with pytest.raises(ParameterError, match="unknown setting 'bogus'"):
         orchestrate.solve(orchestrate.paper_scene(), {"bogus": 1})
+
+
+def test_the_folder_of_an_api_run_killed_meanwhile_goes_with_the_next_run(tmp_path):
+    """A process killed during orchestrate.solve (here while it commits its files) leaves
+    its private folder under the temporary folder; the next run removes it (its lock is
+    free), and leaves none of its own."""
+    tmp, marker = tmp_path / "tmp", tmp_path / "paused"
+    tmp.mkdir()
+    env = dict(os.environ, TMPDIR=str(tmp), ORCHESTRATE_PAUSE_AT="committing",
+               ORCHESTRATE_PAUSE_FILE=str(marker))
+    solving = "import orchestrate; orchestrate.solve(orchestrate.paper_scene(h2=0.25))"
+    killed = subprocess.Popen([sys.executable, "-c", solving], env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while not marker.exists():
+        assert killed.poll() is None and time.monotonic() < deadline, killed.communicate()
+        time.sleep(0.02)
+    killed.kill()
+    killed.wait()
+    left = list(tmp.glob("orchestrate-api-*"))
+    assert len(left) == 1 and list(left[0].glob("run")) + list(left[0].glob(".run.partial-*"))
+    env.pop("ORCHESTRATE_PAUSE_AT")
+    subprocess.run([sys.executable, "-c", solving], env=env, check=True, timeout=300,
+                   capture_output=True)
+    assert list(tmp.glob("orchestrate-api-*")) == [] and list(tmp.glob("robin-*")) == []

@@ -7,7 +7,10 @@ over, evaluates their maps instead of solving, and must give the answer of a run
 own to rounding, its indenter's fields at the indenter's new place.
 """
 
+import gc
+import json
 import os
+import threading
 
 import meshio
 import numpy as np
@@ -165,4 +168,43 @@ def test_equal_patches_of_one_scene_each_have_a_worker(tmp_path):
     settings = Settings(**values)
     with Session() as session:
         summary = solve(scene, settings, str(tmp_path / "run"), session=session)
-        assert len(session._entries) == len(summary["dofs"])
+        assert len(session.workers) == len(summary["dofs"])
+
+
+def test_one_session_from_two_threads_solves_one_scene_at_a_time(kept_runs, tmp_path):
+    """Two threads solving with one Session: its lock serialises the runs (no request of
+    one interleaves with the other's on a worker), each with the answer it has alone."""
+    base, alone, _, _, _ = kept_runs
+    scenes = [paper_scene(h2=0.25, E2=5.0, model="elastic"),
+              paper_scene(h2=0.125, E2=5.0, model="elastic")]
+    found, failed = {}, []
+
+    def run(number):
+        try:
+            found[number] = solve(scenes[number], Settings(), str(tmp_path / f"t{number}"),
+                                  session=session)
+        except BaseException as error:          # reported by the main thread
+            failed.append(error)
+    with Session() as session:
+        threads = [threading.Thread(target=run, args=(n,)) for n in (0, 1)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join(timeout=300)
+    assert not failed and not any(thread.is_alive() for thread in threads)
+    first = json.loads((base / "first" / "summary.json").read_text())
+    for summary, expected in ((found[0], alone), (found[1], first)):
+        for key in ("peak_contact_stress", "peak_interface_stress", "total_force"):
+            assert summary[key] == pytest.approx(expected[key], rel=1e-9), key
+
+
+def test_a_session_never_closed_stops_its_workers_when_collected(tmp_path):
+    session = Session()
+    solve(paper_scene(h2=0.25), Settings(), str(tmp_path / "run"), session=session)
+    processes = [worker.process for worker in session.workers]
+    folder = session.folder
+    assert processes and all(process.poll() is None for process in processes)
+    del session
+    gc.collect()
+    assert all(process.poll() is not None for process in processes)
+    assert not os.path.exists(folder)
