@@ -6,6 +6,11 @@ The sweep file (orchestrate/sweeps/figures.toml) lists fig. 5's scenes first: it
 the longest to draw (twice figs. 3 and 4 together), so it is drawn while the other runs
 go on; figs. 3 and 4 follow the last run. The sweep's own process imports no plotting
 library: it only waits for the runs.
+
+The figures are drawn into a staging folder beside them and put in place together once
+all are drawn: a rebuild interrupted leaves the earlier set whole, never a mix of old
+and new; a figure that could not be drawn (a run of it did not converge) leaves no
+earlier version of itself behind.
 """
 
 from concurrent.futures import ProcessPoolExecutor
@@ -13,11 +18,16 @@ import importlib
 import multiprocessing
 import os
 from pathlib import Path
+import shutil
 
 from .figure_scenes import DRAWS
 from .provenance import forms_digest
 from .sweep import (kill_pool, load_sweep, named_points, point_stamp, read_manifest,
                     run_status, why_stale)
+
+
+STAGING = ".figures-staging"
+FIGURE_FILES = (".png", ".pdf", "_data.csv")    # what orchestrate/figures.py writes of each
 
 
 def figure_runs(sweep_file, sweep_dir):
@@ -69,7 +79,10 @@ class FigureDrawing:
 
     def __init__(self, sweep_file, sweep_dir, out_dir):
         self.runs = figure_runs(sweep_file, sweep_dir)
-        self.out_dir = str(out_dir)
+        self.out_dir = Path(out_dir)
+        self.staging = self.out_dir / STAGING     # what an interrupted rebuild left goes
+        shutil.rmtree(self.staging, ignore_errors=True)
+        self.staging.mkdir(parents=True)
         self.pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"),
                                         initializer=_start_drawing, initargs=(os.getpid(),))
         self.pool.submit(int)              # the process starts now, not at the first figure
@@ -93,22 +106,32 @@ class FigureDrawing:
         if waiting:
             folders = sorted({str(folder) for figure in waiting
                               for folder in self.runs[figure]})
-            self.batches.append(self.pool.submit(_draw, waiting, folders, self.out_dir))
+            self.batches.append(self.pool.submit(_draw, waiting, folders, str(self.staging)))
             self.drawings.update((figure, self.batches[-1]) for figure in waiting)
 
     def finish(self):
-        """The PNG paths of the figures drawn, once all are; raises if a drawing failed."""
-        paths = []
+        """Once every figure is drawn, put them in place together; return the PNG paths
+        of those drawn. Raises if a drawing failed (the earlier set then stays whole)."""
         while self.batches:
-            paths += self.batches.pop(0).result()
+            self.batches.pop(0).result()
             if not self.batches:
                 self._draw_waiting()
-        return paths
+        drawn = [figure for figure, batch in self.drawings.items() if batch is not None]
+        for figure in self.runs:
+            for suffix in FIGURE_FILES:
+                staged = self.staging / f"{figure}{suffix}"
+                target = self.out_dir / f"{figure}{suffix}"
+                if figure in drawn:
+                    os.replace(staged, target)
+                else:
+                    target.unlink(missing_ok=True)      # drawn from runs no longer there
+        return [str(self.out_dir / f"{figure}.png") for figure in drawn]
 
     def close(self):
-        """Kill the drawing process, busy or not: what it was writing has its partial
-        name (never taken for whole), and an idle one takes half a second to exit."""
+        """Kill the drawing process, busy or not (an idle one takes half a second to
+        exit), and remove the staging folder: what it held was not put in place."""
         kill_pool(self.pool)
+        shutil.rmtree(self.staging, ignore_errors=True)
 
     def __enter__(self):
         return self

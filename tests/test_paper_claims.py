@@ -12,12 +12,14 @@ import json
 import shutil
 import subprocess
 import sys
+import time
 
 import pandas as pd
 import pytest
 
 from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
-from orchestrate.figure_sweep import figure_runs, ready_figures
+from orchestrate.figure_sweep import (FIGURE_FILES, STAGING, FigureDrawing, figure_runs,
+                                      ready_figures)
 from orchestrate.figure_scenes import FIGURE_HEIGHTS, FIGURE_SCENES
 from orchestrate.paths import FIGURE_SWEEP
 from orchestrate.provenance import forms_digest
@@ -116,6 +118,28 @@ def test_a_run_that_did_not_converge_keeps_out_only_the_figures_that_draw_it(fig
                            str(tmp_path)], cwd=PROJECT_DIR, capture_output=True, text=True)
     assert done.returncode == 1 and "1 stagnated" in done.stdout
     assert sorted(path.name for path in tmp_path.glob("fig*.png")) == ["fig3.png", "fig5.png"]
+
+
+def test_an_interrupted_rebuild_leaves_the_earlier_figures_whole(figures, tmp_path):
+    """The figures are drawn aside and put in place together: a rebuild killed while it
+    draws leaves the earlier set as it was (and no staging folder); one that finishes
+    replaces every figure."""
+    shutil.copytree(figures, tmp_path, dirs_exist_ok=True)
+    names = [f"{figure}{suffix}" for figure in ("fig3", "fig4", "fig5")
+             for suffix in FIGURE_FILES]
+    before = {name: (tmp_path / name).read_bytes() for name in names}
+    stamps = {name: (tmp_path / name).stat().st_mtime_ns for name in names}
+    drawing = FigureDrawing(FIGURE_SWEEP, tmp_path / "figures", tmp_path)
+    drawing.run_done()                        # every run is current: all three drawing
+    time.sleep(0.5)
+    drawing.close()                           # killed mid-rebuild
+    assert {name: (tmp_path / name).read_bytes() for name in names} == before
+    assert not (tmp_path / STAGING).exists()
+    with FigureDrawing(FIGURE_SWEEP, tmp_path / "figures", tmp_path) as drawing:
+        drawing.run_done()
+        assert len(drawing.finish()) == 3
+    assert all((tmp_path / name).stat().st_mtime_ns != stamps[name] for name in names)
+    assert not (tmp_path / STAGING).exists()
 
 
 def test_a_figure_is_drawn_once_the_runs_it_draws_have_converged(tmp_path):
