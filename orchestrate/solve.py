@@ -99,6 +99,24 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             first_iterate = start if coarse is None else None
             loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate,
                                   subdomains.robin_maps, coarse)
+            inner_solve_used = _inner_solve_used(loop.history, coarse is not None)
+            fallback = None
+            if (not loop.converged and loop.status in FALLBACK_STATUSES
+                    and settings.inner_solve == "auto" and settings.workers == "persistent"
+                    and inner_solve_used != "direct"):
+                # auto chose to iterate, and the iteration stalled or diverged (extreme
+                # moduli): each contact set solved directly from the maps instead
+                fallback = {"inner_solve": inner_solve_used, "status": loop.status,
+                            "reason": loop.reason, "iterations": loop.iterations}
+                subdomains.solve_directly()
+                earlier = loop.history
+                loop = run_robin_loop(subdomains.solve, problem, settings, progress,
+                                      first_iterate, subdomains.robin_maps)
+                for row in loop.history:
+                    row["iteration"] += len(earlier)
+                loop.history = earlier + loop.history
+                loop.iterations = len(loop.history)
+                inner_solve_used = f"{fallback['inner_solve']} ({fallback['status']}), then direct"
             if loop.converged:
                 reached = zone_end_reached(problem, loop.psi)
                 if reached is not None:
@@ -123,7 +141,8 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             "setup_time_s": setup_seconds,
             "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
             "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
-            "inner_solve_used": _inner_solve_used(loop.history, coarse is not None),
+            "inner_solve_used": inner_solve_used,
+            "inner_solve_fallback": fallback,
             "started_from": (start_name or str(start_from) if first_iterate is not None
                              and settings.method != "paper" else None),
             "dofs": dofs,
@@ -150,6 +169,10 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     if not loop.converged:
         raise RunFailed(summary)
     return summary
+
+
+# An iterated inner solve that auto chose and that ended so falls back to the direct solve
+FALLBACK_STATUSES = ("diverged", "stagnated")
 
 
 @dataclass(frozen=True)

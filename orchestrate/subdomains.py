@@ -147,6 +147,12 @@ class Subdomains:
         self.direct = self.use_maps and inner_solve in ("auto", "direct")
         self.map_new = self.direct and (inner_solve == "direct" or self._maps_pay())
 
+    def solve_directly(self):
+        """From now on every worker gives its map, and the loop solves each contact set
+        directly (what "direct" does): an iterated inner solve that failed falls back
+        to it (orchestrate/solve.py)."""
+        self.use_maps = self.direct = self.map_new = True
+
     def _maps_pay(self):
         """Whether probing the new workers' maps costs less than the Robin iterations a
         direct solve of each contact set saves (MAP_UNKNOWNS; the workers work side by

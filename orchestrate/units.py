@@ -85,7 +85,7 @@ TIMER_PREFIXES = ("cpu_", "back_")   # history.csv: seconds per subdomain (cpu_b
 # settings are in b and E by definition, the rest are counts by subdomain or texts.
 SUMMARY_AS_IS = ("scene", "settings", "status", "reason", "dofs", "units", "not_estimated",
                  "estimated_unknowns", "model", "started_from", "inner_solve_used",
-                 "provenance", "warnings", "sweep_point")     # warnings: texts and ratios (validity.py)
+                 "provenance", "warnings", "sweep_point", "inner_solve_fallback")     # warnings: texts and ratios (validity.py)
 
 
 # ---- unit names and values with units (pint) -------------------------------------------

@@ -187,3 +187,23 @@ def test_two_levels_on_the_papers_mesh_coarsen_its_interface_elements(tmp_path):
 def test_two_levels_the_settings_cannot_give_are_refused():
     with pytest.raises(ParameterError, match="method = 'active-set'"):
         Settings(method="paper", inner_solve="two-level", mesh_level=2)
+
+
+def test_auto_falls_back_to_the_direct_solve_where_two_levels_stall(tmp_path):
+    """A base a thousand times stiffer than the indenter and the 2D coating, at mesh
+    level 2: auto iterates with two levels, which stalls (the iterates stop changing
+    above the tolerance the estimate needs); it falls back to solving each contact set
+    directly, says so in the summary, and reaches the direct solve's answer."""
+    scene = paper_scene(model="elastic", E3=1000.0)
+    auto = solve(scene, Settings(mesh_level=2), str(tmp_path / "auto"))
+    direct = solve(scene, Settings(mesh_level=2, inner_solve="direct"),
+                   str(tmp_path / "direct"))
+    fallback = auto["inner_solve_fallback"]
+    assert fallback["inner_solve"] == "two-level" and fallback["status"] == "stagnated"
+    assert auto["inner_solve_used"] == "two-level (stagnated), then direct"
+    assert auto["converged"] and direct["inner_solve_fallback"] is None
+    history = pd.read_csv(tmp_path / "auto" / "history.csv")
+    assert len(history) == auto["iterations"] > fallback["iterations"]
+    assert history["iteration"].tolist() == list(range(1, len(history) + 1))
+    for key in ("peak_contact_stress", "peak_interface_stress", "total_force"):
+        assert auto[key] == pytest.approx(direct[key], rel=EPS_U), key
