@@ -22,7 +22,8 @@ import traceback
 from .answers import describe
 from .errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT_INTERRUPTED,
                      EXIT_NOT_CONVERGED, EXIT_WARNINGS,
-                     EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure)
+                     EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure,
+                     WarnedBeforeWork)
 from .freefem import FreeFemMissing
 from .scene import INNER_SOLVES, METHODS, MODEL_CHOICES, WORKERS, Settings
 from .scene_file import SETTINGS_LENGTHS, SHORTHANDS, scene_and_settings
@@ -34,7 +35,8 @@ EXIT_STATUSES = """exit status:
        an output folder that is not free
   3    failed: a worker or a file (disk full, file size limit, permission), named
   4    internal error (a bug)
-  5    converged with warnings (the scene leaves what the tool models), under --strict
+  5    under --strict: warnings (the scene leaves what the tool models); those known
+       before any work refuse the run, nothing written
   130, 143, 129, 131   interrupted by SIGINT, SIGTERM, SIGHUP, SIGQUIT"""
 
 _SETTINGS_HELP = {
@@ -140,7 +142,8 @@ def build_parser():
     solve.add_argument("--quiet", action="store_true", help="no progress lines")
     solve.add_argument("--strict", action="store_true",
                        help="exit with status 5 if the run has warnings (the scene leaves "
-                            "what the tool models: summary.json's warnings)")
+                            "what the tool models: summary.json's warnings); those known "
+                            "before any work refuse the run")
     _add_scene_options(solve)
     _add_settings_options(solve)
     sweep = commands.add_parser(
@@ -331,10 +334,16 @@ def _solve(args):
         from .solve import solve         # loads gmsh: may fail for want of memory
         scene, settings = scene_from_arguments(args)
         summary = solve(scene, settings, args.out, None if args.quiet else _progress,
-                        overwrite=args.overwrite)
+                        overwrite=args.overwrite, strict=args.strict)
     except (ParameterError, FreeFemMissing) as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_REFUSED
+    except WarnedBeforeWork as refused:
+        for warning in refused.warnings:
+            print(f"warning ({warning['code']}): {warning['message']}", file=sys.stderr)
+        print(f"refused under --strict before any work: {refused}; nothing written "
+              f"(exit status {EXIT_WARNINGS})", file=sys.stderr)
+        return EXIT_WARNINGS
     except RunFailed as error:
         print(f"not converged: {error} (report in {args.out}/summary.json)", file=sys.stderr)
         return EXIT_NOT_CONVERGED

@@ -37,7 +37,7 @@ from . import answers, freefem
 from .coarse import CoarseLevel
 from .contact import contact_half_width, contact_zones
 from .discretization import discretize
-from .errors import RunFailed  # noqa: F401  (raised here; callers import it from here too)
+from .errors import RunFailed, WarnedBeforeWork  # noqa: F401  (raised here; callers import them from here too)
 from .faults import checkpoint
 from .folders import RunFolder, WorkFolder
 from .labels import LABELS
@@ -52,12 +52,12 @@ from .session import Session
 from .state import StateLayout
 from .subdomains import start_subdomains, write_inputs
 from .units import dimensionless, express_run, scaled_summary, summary_units
-from .validity import Say, run_warnings, scene_warnings
+from .validity import Say, mesh_warnings, run_warnings, scene_warnings
 from .warm_start import start_state
 
 
 def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None,
-          session=None, sweep_point=None, start_name=None):
+          session=None, sweep_point=None, start_name=None, strict=False):
     """Solve the scene; write results into ``out_dir``; return the summary dict.
     ``start_from``: a finished run's folder whose interface state is the first iterate
     (orchestrate/warm_start.py: a run of this layout of bodies and interfaces, checked
@@ -66,7 +66,8 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     ``session``: a
     Session (orchestrate/session.py) that keeps workers from scene to scene; without
     one, the run's workers stop with it. ``sweep_point``: the sweep and inputs a sweep's
-    run records (orchestrate/sweep.py), or None.
+    run records (orchestrate/sweep.py), or None. ``strict``: WarnedBeforeWork for the
+    warnings known before any work (validity.py).
 
     Before any work: ParameterError for a scene the settings cannot solve, a problem
     too large for the machine, or an output folder another run holds or is writing
@@ -75,6 +76,8 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     file fails. The folder appears only once complete (orchestrate/folders.py)."""
     freefem.executable()             # a missing FreeFEM is reported before any work
     plan = prepare(scene, settings)
+    if strict and plan.warnings:
+        raise WarnedBeforeWork(list(plan.warnings))
     scene, problem, model_choice, scales = plan.scene, plan.problem, plan.model_choice, plan.scales
     start = (start_state(start_from, StateLayout(problem.interfaces))
              if start_from is not None else None)         # checked before any work
@@ -195,8 +198,10 @@ def prepare(scene, settings):
     problem = discretize(solved, settings)
     check_size(problem)
     chosen = scene.with_models([c.model for c in solved.coatings])
+    say = Say(scales, scene.units)
     return Plan(chosen, problem, model_choice, scales,
-                tuple(scene_warnings(chosen, scene, settings, Say(scales, scene.units))))
+                tuple(scene_warnings(chosen, scene, settings, say)
+                      + mesh_warnings(problem, say)))
 
 
 def forms_edited_warning():

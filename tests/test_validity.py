@@ -128,7 +128,7 @@ def test_every_warning_passed_its_limit(summaries):
         for warning in summary["warnings"]:
             if warning["value"] is None:
                 continue
-            if warning["code"] in ("coarse_contact",):        # too few: below the limit
+            if warning["code"] in ("coarse_contact", "coarse_mesh"):   # too few: below it
                 assert warning["value"] < warning["limit"], (name, warning)
             elif warning["code"] == "contact_at_edge":
                 assert warning["value"] == warning["limit"], (name, warning)
@@ -136,15 +136,48 @@ def test_every_warning_passed_its_limit(summaries):
                 assert warning["value"] > warning["limit"], (name, warning)
 
 
-def test_strict_exits_with_status_5_and_writes_the_results(tmp_path):
+def test_strict_refuses_a_run_warned_before_any_work_with_status_5(tmp_path):
+    """A warning known before any work (a coating thicker than a quarter of its base):
+    --strict refuses the run, exit status 5, nothing written; without it the run goes
+    and says so."""
     command = [sys.executable, "-m", "orchestrate", "solve", "--quiet", "--h2", "2.5",
                "--model", "elastic"]
     strict = subprocess.run([*command, "--strict", "--out", str(tmp_path / "strict")],
                             cwd=PROJECT_DIR, capture_output=True, text=True, timeout=300)
     assert strict.returncode == 5, strict.stderr
-    assert "warning (thick_coating)" in strict.stderr
-    summary = json.loads((tmp_path / "strict" / "summary.json").read_text())
-    assert summary["converged"] and [w["code"] for w in summary["warnings"]] == ["thick_coating"]
+    assert "warning (thick_coating)" in strict.stderr and "before any work" in strict.stderr
+    assert not (tmp_path / "strict").exists()
     lenient = subprocess.run([*command, "--out", str(tmp_path / "lenient")], cwd=PROJECT_DIR,
                              capture_output=True, text=True, timeout=300)
     assert lenient.returncode == 0 and "warning (thick_coating)" in lenient.stderr
+
+
+def test_strict_exits_with_status_5_after_a_run_warned_and_writes_its_results(tmp_path):
+    """Warnings the run finds (its contact at the block's edge): --strict exits with 5,
+    the results written."""
+    out = tmp_path / "strict"
+    strict = subprocess.run([sys.executable, "-m", "orchestrate", "solve", "--quiet",
+                             "--scene", str(CYLINDER), "--force", "1.5", "--model", "elastic",
+                             "--strict", "--out", str(out)], cwd=PROJECT_DIR,
+                            capture_output=True, text=True, timeout=300)
+    assert strict.returncode == 5, strict.stderr
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["converged"] and "contact_at_edge" in [w["code"] for w in summary["warnings"]]
+    assert (out / "contact.csv").is_file()
+
+
+def test_a_mesh_too_coarse_for_the_predicted_contact_is_said_before_any_work(tmp_path):
+    """Elements of 2.5 mm for a contact predicted 1.8 mm wide: said before any work (the
+    limit, 10 elements across, is orchestrate/resolution.py's study), the count from
+    the a priori half-width, and again by the run from the zone it found."""
+    from orchestrate.model_choice import contact_half_width
+    from orchestrate.solve import prepare
+
+    scene, settings = scene_and_settings(steel_scene(tmp_path / "steel.toml"), {},
+                                         {"element_size": "2.5 mm"})
+    plan = prepare(scene, settings)
+    (warning,) = [w for w in plan.warnings if w["code"] == "coarse_mesh"]
+    assert warning["value"] == pytest.approx(2 * contact_half_width(scene) / 2.5, rel=0.05)
+    assert warning["limit"] == ELEMENTS_ACROSS
+    fine = prepare(*scene_and_settings(steel_scene(tmp_path / "steel.toml")))
+    assert [w for w in fine.warnings if w["code"] == "coarse_mesh"] == []
