@@ -41,6 +41,7 @@ SMALLEST_LOAD = 1e-12          # a descent in b, a force in E b: below, results 
 LENGTH_RANGE = (1e-6, 1e6)     # b: sizes, positions (in absolute value), thicknesses
 RADIUS_LIMIT = 1e12            # b
 LARGEST_LOAD = 1e6             # a descent in b, a force in E b
+SHEAR_FACTOR_RANGE = (1e-3, 1e3)   # k' of the shell
 PROFILES = ("circle", "parabola")
 FACE_MESHES = ("shaped", "flat")
 SHAPES = ("block", "roller")
@@ -180,7 +181,7 @@ class Base:
             if self.bore is not None:
                 _positive(prefix + "bore", self.bore)
                 _require(self.bore < 0.9 * self.radius, prefix + "bore",
-                         f"{prefix}bore = {self.bore!r} must lie in (0, 0.9 radius = "
+                         f"{prefix}bore = {self.bore!r} must lie in (0, 0.9 {prefix}radius = "
                          f"{0.9 * self.radius:g})")
 
     @property
@@ -216,6 +217,11 @@ class Coating:
                  f"{prefix}end = {self.end!r} must exceed {prefix}start = {self.start!r}")
         for name in ("thickness", "E", "shear_factor"):
             _positive(prefix + name, getattr(self, name))
+        low, high = SHEAR_FACTOR_RANGE
+        _require(low <= self.shear_factor <= high, prefix + "shear_factor",
+                 f"{prefix}shear_factor = {self.shear_factor!r} must lie in [{low:g}, "
+                 f"{high:g}] (Timoshenko's k', 5/6 for a rectangle): beyond, the shell's "
+                 "shear stiffness leaves its matrix ill-conditioned")
         _poisson(prefix + "nu", self.nu)
         _choice(prefix + "model", self.model, MODEL_CHOICES)
 
@@ -341,10 +347,12 @@ class Scene:
             limit = base.top
             inside = (low <= coating.start and coating.end <= limit if base.shape == "block"
                       else low <= coating.start and coating.end < limit and coating.start > -limit)
-            _require(inside, key + "start" if coating.start < low else key + "end",
-                     f"{key}start, end = {coating.start!r}, {coating.end!r} must lie on "
-                     f"{where}" + (" (a half model starts at the symmetry axis x1 = 0)"
-                                   if self.symmetric and coating.start < 0 else ""))
+            name = "start" if coating.start < low or coating.start <= -limit else "end"
+            _require(inside, key + name,
+                     f"{key}{name} = {getattr(coating, name)!r} (the patch [{coating.start!r}, "
+                     f"{coating.end!r}]) must lie on {where}"
+                     + (" (a half model starts at the symmetry axis x1 = 0)"
+                        if self.symmetric and coating.start < 0 else ""))
             if base.shape == "block":
                 _require(coating.thickness < base.height, key + "thickness",
                          f"{key}thickness = {coating.thickness!r} must be below base.height "

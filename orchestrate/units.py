@@ -247,6 +247,9 @@ def units_from_table(table, path=None):
         raise ParameterError(f"{where}units.b is missing: give the solver's unit of length "
                              f"in {table['length']} (the mesh's element_size, theta and robin "
                              "are in b; the paper's bodies are 4 b wide)", "units.b")
+    if "b" in table and table.get("length", "b") == "b":
+        raise ParameterError(f"{where}units.b = {table['b']!r} needs units.length, the unit "
+                             "it is given in (lengths in b are b's own unit: b = 1)", "units.b")
     try:
         return Units(**table)
     except ParameterError as error:

@@ -17,7 +17,7 @@ from tests.conftest import PROJECT_DIR
     ({"h2": 0.0}, "coating[1].thickness"), ({"h2": -0.1}, "coating[1].thickness"),
     ({"h2": 8.0}, "coating[1].thickness"), ({"h2": 9.0}, "coating[1].thickness"),
     ({"height": 0.0}, "indenter.height"), ({"length": -4.0}, "indenter.width"),
-    ({"coating_length": 5.0}, "coating[1].start, end"), ({"stamp": -1e-3}, "load.displacement"),
+    ({"coating_length": 5.0}, "coating[1].end"), ({"stamp": -1e-3}, "load.displacement"),
     ({"E1": float("nan")}, "indenter.E"), ({"model": "plate"}, "coating[1].model"),
     ({"E1": 1e300, "E2": 1e300, "E3": 1e300}, "indenter.E"),   # converged to zero force
 ])
