@@ -2,6 +2,7 @@
 installed with `pip install -e .` into a fresh venv, imported from another directory,
 ``orchestrate.solve`` returning arrays and frames without an output folder."""
 
+import dataclasses
 import json
 import os
 import subprocess
@@ -111,3 +112,15 @@ def test_the_folder_of_an_api_run_killed_meanwhile_goes_with_the_next_run(tmp_pa
     subprocess.run([sys.executable, "-c", solving], env=env, check=True, timeout=300,
                    capture_output=True)
     assert list(tmp.glob("orchestrate-api-*")) == [] and list(tmp.glob("robin-*")) == []
+
+
+def test_a_run_started_from_a_result_names_it_not_a_deleted_folder(api_result, tmp_path):
+    """Not the temporary folder its files were read from, gone by then: the folder it was
+    saved into, or that it was not."""
+    scene = orchestrate.paper_scene(h2=0.125, E2=5.0)
+    unsaved = dataclasses.replace(api_result, folder=None)
+    again = orchestrate.solve(scene, start_from=unsaved)
+    assert again.summary["started_from"] == "a Result in memory"
+    saved = unsaved.save(tmp_path / "saved")
+    again = orchestrate.solve(scene, start_from=unsaved)
+    assert again.summary["started_from"] == str(saved.resolve())

@@ -168,10 +168,20 @@ def test_an_interrupted_sweep_resumes_with_the_missing_runs_only(sweep_file, uni
 
 
 def test_the_dask_engine_runs_the_same_sweep(sweep_file, uninterrupted, tmp_path):
-    table = run_sweep(sweep_file, tmp_path / "dask", engine="dask", jobs=2,
-                      stream=open(os.devnull, "w"))
+    said = io.StringIO()
+    table = run_sweep(sweep_file, tmp_path / "dask", engine="dask", jobs=2, stream=said)
     _same_table(table, uninterrupted[0])
     assert _processes_mentioning(str(tmp_path / "dask")) == []
+    last = said.getvalue().strip().splitlines()[-1]          # the progress at the end
+    assert last.startswith(f"{RUNS}/{RUNS} done, 0 running"), last
+
+
+def test_checking_a_large_sweep_says_how_far_it_is(monkeypatch):
+    from orchestrate import sweep
+    monkeypatch.setattr(sweep, "CHECK_REPORT_SECONDS", 0.0)
+    said = io.StringIO()
+    sweep.check_points([{"h2": 0.1 + 1e-3 * n} for n in range(5)], stream=said)
+    assert said.getvalue().splitlines()[-1] == "checking the sweep's points: 4 of 5"
 
 
 def test_a_bad_point_refuses_the_sweep_before_any_run(tmp_path):
@@ -432,3 +442,27 @@ def test_a_sweep_writes_into_the_current_folder_and_says_where(tmp_path):
     assert table.is_file() and f"table: {os.path.join('results', 'here', 'runs.csv')}" in \
         result.stdout
     assert not (PROJECT_DIR / "results" / "here").exists()
+
+
+def test_a_scene_file_edited_while_a_sweep_runs_leaves_no_stale_point(tmp_path):
+    """The scene file edited once the first point is solved: the later points read the
+    edited file, and the first is solved again once the pass is over (named); every row
+    is the edited scene's."""
+    scene = tmp_path / "scene.toml"
+    scene.write_text((PROJECT_DIR / "orchestrate" / "scenes" / "paper.toml").read_text())
+    path = tmp_path / "mid.toml"
+    path.write_text('[fixed]\nscene = "scene.toml"\neps_u = 1e-4\nmodel = "elastic"\n'
+                    '[grid]\nh2 = [0.25, 0.125]\n')
+    solved = []
+
+    def edit_after_the_first(name=None):
+        if name is not None:
+            solved.append(name)
+            if len(solved) == 1:
+                scene.write_text(scene.read_text().replace("E = 1.0\nnu = 0.3\nmodel",
+                                                           "E = 2.0\nnu = 0.3\nmodel"))
+    said = io.StringIO()
+    table = run_sweep(path, tmp_path / "out", jobs=1, stream=said, run_done=edit_after_the_first)
+    assert len(solved) == 3 and solved[2] == solved[0]
+    assert "1 point(s) during the sweep: its inputs changed" in said.getvalue()
+    assert set(table["E2"]) == {2.0} and table.converged.all()
