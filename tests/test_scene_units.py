@@ -134,7 +134,9 @@ def test_a_wrong_unit_is_refused_with_exit_2_naming_file_key_and_what_is_due(
     ('length = "mm"\nstress = "Mpa"\nb = 2.5', ["units.stress", "unknown unit 'Mpa'"]),
     ('length = "MPa"\nstress = "MPa"\nb = 2.5', ["units.length", "is a stress"]),
     ('length = "mm"\nstress = "MPa"\nb = "2.5 MPa"', ["units.b", "is a stress"]),
-], ids=["a misspelt stress unit", "a stress for the length", "b not a length"])
+    ('stress = "MPa"\nb = 2.5', ["units.b = 2.5 needs units.length"]),
+], ids=["a misspelt stress unit", "a stress for the length", "b not a length",
+        "b without a length unit"])
 def test_unit_names_are_checked(tmp_path, table, words):
     path = tmp_path / "scene.toml"
     path.write_text(STEEL_SCENE.format(**GIVEN).replace(
