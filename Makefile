@@ -24,11 +24,10 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 # it needs are done. A form or solver source edited since runs.csv was written
 # makes the runs stale: they are removed and solved again (so are the runs of a sweep
 # that never wrote its table: nothing says which code solved them).
-FIGURE_SWEEP := orchestrate/sweeps/figures.toml
+FIGURE_SWEEP := studies/sweeps/figures.toml
 FIGURE_RUNS := results/figures/runs.csv
-DRAWING_SOURCES := orchestrate/figures.py orchestrate/figure_scenes.py orchestrate/figure_sweep.py
-SOLVER_SOURCES := $(wildcard freefem/*.idp freefem/*.edp) \
-                  $(filter-out $(DRAWING_SOURCES),$(wildcard orchestrate/*.py))
+DRAWING_SOURCES := studies/figures.py studies/figure_scenes.py studies/figure_sweep.py
+SOLVER_SOURCES := $(wildcard freefem/*.idp freefem/*.edp orchestrate/*.py orchestrate/*/*.py)
 
 FIGURES := results/fig3.png results/fig4.png results/fig5.png
 
@@ -38,20 +37,20 @@ fig3 fig4 fig5: $(FIGURES) ; @:
 $(FIGURE_RUNS) $(FIGURES) &: $(FIGURE_SWEEP) $(SOLVER_SOURCES) $(DRAWING_SOURCES) | setup
 	@if [ ! -f $(FIGURE_RUNS) ] || [ -n "$$(find $(SOLVER_SOURCES) -newer $(FIGURE_RUNS))" ]; \
 	  then rm -rf results/figures/runs; fi
-	$(PYTHON) -m orchestrate figures
+	$(PYTHON) -m studies.figure_sweep
 
 # ---- A discrete coating (orchestrate/scenes/discrete.toml), both coating models ------
 DISCRETE_RUNS := $(foreach m,shell elastic,results/discrete/$(m)/summary.json)
 discrete: results/discrete.png
 results/discrete.png: $(DISCRETE_RUNS) | setup
-	$(PYTHON) -m orchestrate.discrete_figure $(DISCRETE_RUNS) --out $@
+	$(PYTHON) -m orchestrate.plots.discrete_figure $(DISCRETE_RUNS) --out $@
 results/discrete/%/summary.json: orchestrate/scenes/discrete.toml | setup
 	$(PYTHON) -m orchestrate solve --quiet --overwrite --scene $< --model $* --out $(@D)
 
 setup: .venv/.installed .freefem-installed
 	@# the package byte-compiled (again where a source changed): an editable install is
 	@# not, and where PYTHONDONTWRITEBYTECODE is set every process would compile it anew
-	@$(PYTHON) -m compileall -q orchestrate >/dev/null
+	@$(PYTHON) -m compileall -q orchestrate studies >/dev/null
 
 # FreeFEM and the X11/GL client libraries the gmsh wheel links against, from Debian.
 .freefem-installed:
@@ -86,22 +85,22 @@ test: setup
 # solved directly against iterated and against the monolithic solve, mesh levels 1-3:
 # results/direct.csv, direct_figure_scenes.csv.
 bench: setup
-	$(PYTHON) -m orchestrate.bench
-	$(PYTHON) -m orchestrate.penalty
-	$(PYTHON) -m orchestrate.bench_session
-	$(PYTHON) -m orchestrate.bench_direct
+	$(PYTHON) -m studies.bench
+	$(PYTHON) -m studies.penalty
+	$(PYTHON) -m studies.bench_session
+	$(PYTHON) -m studies.bench_direct
 
 # Where each method fails: a sweep of 102 runs (resumable), then its maps and charts
 # (results/stability/). Errors use the fine references of `make bench` where they exist.
 stability: setup
-	$(PYTHON) -m orchestrate sweep orchestrate/sweeps/stability.toml || [ $$? -eq 1 ]  # 1: some runs fail, as expected
-	$(PYTHON) -m orchestrate.stability results/stability
+	$(PYTHON) -m orchestrate sweep studies/sweeps/stability.toml || [ $$? -eq 1 ]  # 1: some runs fail, as expected
+	$(PYTHON) -m studies.stability results/stability
 
 # The model error of each coating model over h2/a x E2/E (the paper's scene) and the
 # automatic choice on held-out scenes (about 40 minutes; finished scenes are kept in
 # results/adequacy/*.csv, so an interrupted study resumes).
 adequacy: setup
-	$(PYTHON) -m orchestrate.adequacy
+	$(PYTHON) -m studies.adequacy
 
 clean:
 	rm -rf results/*/ .pytest_cache

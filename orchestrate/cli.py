@@ -1,7 +1,7 @@
 """Command line: ``python -m orchestrate solve --scene FILE.toml --out DIR``.
 
 Without --scene, the paper's scene (orchestrate/scenes/paper.toml). Flags override
-the file: the paper's parameters (--h2, --E2, --model, ...; orchestrate/scene_file.py's
+the file: the paper's parameters (--h2, --E2, --model, ...; orchestrate/model/scene_file.py's
 SHORTHANDS), any scene key with --set KEY=VALUE, and every solver setting. Values are
 in the scene file's units (its [units] table; b and E without one), or carry their own
 ("20 um", "450 GPa"). Exit statuses (orchestrate/errors.py): 0 converged, 1 not
@@ -13,20 +13,19 @@ interrupted (Ctrl-C), 143 terminated (SIGTERM).
 
 import argparse
 from dataclasses import fields
-from pathlib import Path
 import signal
 import sys
 import tomllib
 import traceback
 
-from .answers import describe
-from .errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT_INTERRUPTED,
+from orchestrate.run.answers import describe
+from orchestrate.errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT_INTERRUPTED,
                      EXIT_NOT_CONVERGED, EXIT_WARNINGS,
                      EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure,
                      WarnedBeforeWork)
-from .freefem import FreeFemMissing
-from .scene import INNER_SOLVES, METHODS, MODEL_CHOICES, WORKERS, Settings
-from .scene_file import SETTINGS_LENGTHS, SHORTHANDS, scene_and_settings
+from orchestrate.workers.freefem import FreeFemMissing
+from orchestrate.model.scene import INNER_SOLVES, METHODS, MODEL_CHOICES, WORKERS, Settings
+from orchestrate.model.scene_file import SETTINGS_LENGTHS, SHORTHANDS, scene_and_settings
 
 EXIT_STATUSES = """exit status:
   0    converged
@@ -102,7 +101,7 @@ def _add_settings_options(parser):
 
 def number_or_quantity(text):
     """A flag's value: a number, or a number with its unit ("20 um"), which the scene
-    converts into its units (orchestrate/units.py)."""
+    converts into its units (orchestrate/model/units.py)."""
     try:
         return float(text)
     except ValueError:
@@ -148,7 +147,7 @@ def build_parser():
     _add_settings_options(solve)
     sweep = commands.add_parser(
         "sweep", help="run a parameter sweep (a TOML file) into results/<name>/",
-        description="Run every point of a sweep file (orchestrate/sweep.py explains the "
+        description="Run every point of a sweep file (orchestrate/sweeps/sweep.py explains the "
                     "format); finished runs are skipped, so an interrupted sweep resumes. "
                     "Writes one folder per run and runs.csv, one row per run.",
         epilog="exit status: 0 every run converged, 1 some did not, 2 refused before any "
@@ -168,16 +167,6 @@ def build_parser():
     sweep.add_argument("--strict", action="store_true",
                        help="exit with status 5 if every run converged but some have "
                             "warnings (runs.csv's warnings column)")
-    figures = commands.add_parser(
-        "figures", help="the paper's figures 3, 4 and 5 (what `make fig3 fig4 fig5` runs)",
-        description="Run the sweep of the figures' scenes (orchestrate/sweeps/figures.toml; "
-                    "finished runs are skipped) into OUT/figures/ and draw OUT/fig3-5 (png, "
-                    "pdf, _data.csv), each figure as soon as its runs have converged, in a "
-                    "drawing process beside the sweep.",
-        epilog="exit status: as `sweep`'s; a figure is drawn only if its runs converged")
-    figures.add_argument("--jobs", type=int, help="runs at once (default: one per core)")
-    figures.add_argument("--out", help="folder of the figures and of their runs "
-                                       "(default: results/ in the current folder)")
     plot = commands.add_parser("plot", help="plot the stresses of a finished run",
                                description="Write RUN/stresses.png from RUN's CSV files.")
     plot.add_argument("run", help="a folder written by `solve`")
@@ -201,7 +190,7 @@ def build_parser():
     return parser
 
 
-def _stop_on_signals():
+def stop_on_signals():
     """Turn SIGINT, SIGTERM, SIGHUP and SIGQUIT into Interrupted, so that clean-up runs
     for each and the exit status tells them apart; once cleaning up, further signals
     wait (a second Ctrl-C must not cut the clean-up short). A closed output pipe is an
@@ -215,7 +204,7 @@ def _stop_on_signals():
     signal.signal(signal.SIGPIPE, signal.SIG_IGN)
 
 
-def _interrupted(error):
+def interrupted(error):
     signum = getattr(error, "signum", signal.SIGINT)
     print("interrupted" if signum == signal.SIGINT
           else f"terminated ({signal.Signals(signum).name})", file=sys.stderr)
@@ -236,24 +225,8 @@ def _say(text):
         pass
 
 
-def _figures(args):
-    from .figure_sweep import FigureDrawing
-    from .paths import FIGURE_SWEEP
-    out = Path(args.out) if args.out else Path("results")
-    runs = out / "figures"
-    with FigureDrawing(FIGURE_SWEEP, runs, out) as drawing:
-        status = _sweep(argparse.Namespace(file=FIGURE_SWEEP, out=runs, engine="local",
-                                           jobs=args.jobs, scheduler=None, retry_failed=False,
-                                           strict=False),
-                        drawing.run_done)
-        if status in (EXIT_CONVERGED, EXIT_NOT_CONVERGED):   # the figures of converged runs
-            for path in drawing.finish():
-                _say(path)
-    return status
-
-
 def _sweep(args, run_done=lambda name=None: None):
-    from .sweep import run_sweep
+    from orchestrate.sweeps.sweep import run_sweep
     try:
         table = run_sweep(args.file, args.out, args.engine, args.jobs, args.scheduler,
                           retry_failed=args.retry_failed, run_done=run_done)
@@ -262,7 +235,7 @@ def _sweep(args, run_done=lambda name=None: None):
         return EXIT_REFUSED
     except KeyboardInterrupt as error:
         print("finished runs are kept; run the sweep again to resume", file=sys.stderr)
-        return _interrupted(error)
+        return interrupted(error)
     counts = table["status"].value_counts().to_dict() if len(table) else {}
     warned = int((table["warnings"].fillna("") != "").sum()) if len(table) else 0
     print(f"{len(table)} runs: " + ", ".join(f"{n} {s}" for s, n in sorted(counts.items()))
@@ -283,7 +256,7 @@ def scene_from_arguments(args):
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
-    _stop_on_signals()
+    stop_on_signals()
     try:
         if args.command == "plot":
             return _plot(args)
@@ -291,11 +264,9 @@ def main(argv=None):
             return _plot_sweep(args)
         if args.command == "sweep":
             return _sweep(args)
-        if args.command == "figures":
-            return _figures(args)
         return _solve(args)
     except KeyboardInterrupt as error:
-        return _interrupted(error)
+        return interrupted(error)
     except MemoryError:
         print("failed: out of memory", file=sys.stderr)
         return EXIT_FAILED
@@ -306,7 +277,7 @@ def main(argv=None):
 
 
 def _plot(args):
-    from .plot import plot_run
+    from orchestrate.plots.plot import plot_run
     try:
         print(plot_run(args.run))
     except ParameterError as error:
@@ -316,7 +287,7 @@ def _plot(args):
 
 
 def _plot_sweep(args):
-    from .plot_sweep import plot_sweep
+    from orchestrate.plots.plot_sweep import plot_sweep
     try:
         path, notes = plot_sweep(args.sweep, args.y, args.x, args.by, args.where, args.out,
                                  args.logx, args.logy)
@@ -331,7 +302,7 @@ def _plot_sweep(args):
 
 def _solve(args):
     try:
-        from .solve import solve         # loads gmsh: may fail for want of memory
+        from orchestrate.run.solve import solve         # loads gmsh: may fail for want of memory
         scene, settings = scene_from_arguments(args)
         summary = solve(scene, settings, args.out, None if args.quiet else _progress,
                         overwrite=args.overwrite, strict=args.strict)

@@ -7,7 +7,7 @@
     3    failed: a worker died or hung, a file could not be written (disk full, file size
          limit, permission), or a system resource ran out
     4    an internal error (a bug), with its traceback
-    5    under --strict only: warnings (orchestrate/validity.py), the scene leaves what the
+    5    under --strict only: warnings (orchestrate/run/validity.py), the scene leaves what the
          tool models: known before any work, the run is refused and writes nothing; found
          by the run, its results are written
     130  interrupted by Ctrl-C (SIGINT); 143 terminated (SIGTERM); 129 hung up (SIGHUP);
@@ -47,7 +47,7 @@ def _elided(message):
 
 class WarnedBeforeWork(RuntimeError):
     """Under --strict, a run refused before any work for the warnings its scene already
-    has (orchestrate/validity.py: a mesh too coarse for the predicted contact, a coating
+    has (orchestrate/run/validity.py: a mesh too coarse for the predicted contact, a coating
     model off by its estimate, ...): exit status EXIT_WARNINGS, nothing written."""
 
     def __init__(self, warnings):

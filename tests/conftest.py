@@ -9,7 +9,7 @@ import pytest
 PROJECT_DIR = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT_DIR))
 
-from orchestrate import freefem  # noqa: E402
+from orchestrate.workers import freefem  # noqa: E402
 
 TESTS_FREEFEM_DIR = Path(__file__).resolve().parent / "freefem"
 
@@ -67,7 +67,7 @@ def run_freefem(tmp_path):
 def full_model(scene):
     """The full model of a half model: every patch and the contact zone mirrored about
     x1 = 0 (a patch on the axis doubles)."""
-    from orchestrate.scene_file import apply_overrides
+    from orchestrate.model.scene_file import apply_overrides
 
     overrides = {"symmetric": False}
     for number, coating in enumerate(scene.coatings, start=1):
@@ -87,9 +87,9 @@ def full_model(scene):
 def coating_2d_run(tmp_path_factory):
     """(scene, run folder): the paper's scene with the 2D coating h2 = b/8, E2 = 5E (a
     fig. 5 scene), solved once for the modules that read a 2D coating's fields."""
-    from orchestrate.scene import Settings
-    from orchestrate.scene_file import paper_scene
-    from orchestrate.solve import solve
+    from orchestrate.model.scene import Settings
+    from orchestrate.model.scene_file import paper_scene
+    from orchestrate.run.solve import solve
 
     folder = tmp_path_factory.mktemp("coating_2d") / "run"
     scene = paper_scene(h2=0.125, E2=5.0, model="elastic")

@@ -9,10 +9,10 @@ not crash. And the answer of a Robin run must not depend on the loop that reache
 import numpy as np
 import pandas as pd
 
-from orchestrate.acceleration import Anderson
-from orchestrate.scene import Settings
-from orchestrate.scene_file import paper_scene
-from orchestrate.solve import solve
+from orchestrate.ddm.acceleration import Anderson
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import paper_scene
+from orchestrate.run.solve import solve
 
 
 def _affine_map(eigenvalues, seed=0):

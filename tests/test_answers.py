@@ -1,4 +1,4 @@
-"""The answers of a run (orchestrate/answers.py): peel, compression and shear on the bond,
+"""The answers of a run (orchestrate/run/answers.py): peel, compression and shear on the bond,
 the coating's largest stresses, each with its position, the values at patch ends apart.
 
 Checked on two figure scenes (paper h2 = b/8, E2 = 5E, both coating models) against
@@ -14,10 +14,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate import answers
-from orchestrate.scene import Settings
-from orchestrate.scene_file import paper_scene
-from orchestrate.solve import solve
+from orchestrate.run import answers
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import paper_scene
+from orchestrate.run.solve import solve
 
 H2 = 0.125
 

@@ -1,4 +1,4 @@
-"""The Python API (orchestrate/api.py) as a notebook user meets it: the package
+"""The Python API (orchestrate/run/api.py) as a notebook user meets it: the package
 installed with `pip install -e .` into a fresh venv, imported from another directory,
 ``orchestrate.solve`` returning arrays and frames without an output folder."""
 
@@ -77,7 +77,7 @@ def test_the_result_holds_the_run_and_saves_the_command_lines_files(tmp_path, ap
 
 
 def test_settings_as_a_dict_and_a_scene_file(api_result):
-    from orchestrate.scene_file import SCENES_DIR
+    from orchestrate.model.scene_file import SCENES_DIR
     result = orchestrate.solve(SCENES_DIR / "cylinder.toml", {"eps_u": 1e-4})
     assert result.summary["settings"]["eps_u"] == 1e-4
     assert result.summary["total_force"] == pytest.approx(0.02, rel=1e-6)

@@ -1,4 +1,4 @@
-"""The coarse-mesh correction of the Robin loop (orchestrate/coarse.py).
+"""The coarse-mesh correction of the Robin loop (orchestrate/ddm/coarse.py).
 
 Its transfers interpolate along the interfaces: exact for a state linear in s, and a
 coarse state brought to the fine mesh and back is itself (mesh level 2 halves every
@@ -13,14 +13,14 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.coarse import CoarseLevel, _interpolation, coarse_element_size
-from orchestrate.discretization import discretize
+from orchestrate.ddm.coarse import CoarseLevel, _interpolation, coarse_element_size
+from orchestrate.mesh.discretization import discretize
 from orchestrate.errors import ParameterError
-from orchestrate.scene import Settings
-from orchestrate.scene_file import SCENES_DIR, load_scene, paper_scene
-from orchestrate.session import Session
-from orchestrate.solve import solve
-from orchestrate.state import StateLayout
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
+from orchestrate.workers.session import Session
+from orchestrate.run.solve import solve
+from orchestrate.ddm.state import StateLayout
 
 EPS_U = 1e-6
 

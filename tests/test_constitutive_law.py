@@ -37,11 +37,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.freefem import FORMS_VARIABLE
-from orchestrate.paths import FREEFEM_DIR
-from orchestrate.scene import Settings
-from orchestrate.scene_file import paper_scene
-from orchestrate.solve import solve
+from orchestrate.paths import FORMS_VARIABLE, FREEFEM_DIR
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import paper_scene
+from orchestrate.run.solve import solve
 
 FACTOR = 1.25
 EPS_U = 1e-9

@@ -23,11 +23,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.discrete_figure import draw, figure, load, main, singular_ends
-from orchestrate.paths import RESULTS_DIR
-from orchestrate.scene import Settings, to_dict
-from orchestrate.scene_file import SCENES_DIR, apply_overrides, load_scene
-from orchestrate.solve import solve
+from orchestrate.plots.discrete_figure import draw, figure, load, main, singular_ends
+from studies.paths import RESULTS_DIR
+from orchestrate.model.scene import Settings, to_dict
+from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene
+from orchestrate.run.solve import solve
 
 
 @pytest.fixture(scope="module")

@@ -1,11 +1,11 @@
 """A cylinder on an uncoated block under a force load against plane-strain Hertz.
 
-The scene of orchestrate/hertz.py: a circular face of radius R = 40 b pressed on a flat
+The scene of studies/hertz.py: a circular face of radius R = 40 b pressed on a flat
 block, both of E = 1, nu = 0.3, both bodies W wide (half model) and W high, under the
 force F = pi E* a^2 / (4 R) that gives the Hertz half-width a = 1 b, with
 E* = E / (2 (1 - nu^2)) and the peak pressure p0 = 2 F / (pi a).
 
-Measured (python -m orchestrate.hertz, the Robin loop to eps_u = 1e-9; errors against
+Measured (python -m studies.hertz, the Robin loop to eps_u = 1e-9; errors against
 Hertz, mesh level 1):
 
     W    peak      half-width
@@ -31,7 +31,7 @@ import math
 
 import pytest
 
-from orchestrate.hertz import hertz, hertz_force, hertz_scene, run
+from studies.hertz import hertz, hertz_force, hertz_scene, run
 
 TOLERANCE = 0.02        # the issue's 2 %
 

@@ -5,7 +5,7 @@ The cases are generated from tables: every scene key, setting and [units] key gi
 wrong type, a wrong or unknown unit, a wrong sign, zero, NaN, infinities, huge and tiny
 magnitudes; whole files that are empty, too large, not TOML, with a byte-order mark, a
 folder, missing; every kind of bad ``start_from``. Each is checked where the command
-line checks it (the scene file, its overrides and settings, then orchestrate/solve.py's
+line checks it (the scene file, its overrides and settings, then orchestrate/run/solve.py's
 prepare, which decides everything before a worker starts), in this process; a sample
 goes through the command line itself (exit status 2, no traceback), and the start_from
 cases through solve() with starting a worker made to fail the test.
@@ -22,11 +22,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate import worker
+from orchestrate.workers import worker
 from orchestrate.errors import ParameterError
-from orchestrate.scene import Settings
-from orchestrate.scene_file import SCENES_DIR, scene_and_settings
-from orchestrate.solve import prepare, solve
+from orchestrate.model.scene_file import SCENES_DIR, scene_and_settings
+from orchestrate.run.solve import prepare, solve
 from tests.conftest import PROJECT_DIR, steel_scene
 
 # ---- a minimal TOML writer for the cases' files -------------------------------------------

@@ -6,8 +6,8 @@ import sys
 
 import pytest
 
-from orchestrate.scene import ParameterError, Settings
-from orchestrate.scene_file import paper_scene
+from orchestrate.model.scene import ParameterError, Settings
+from orchestrate.model.scene_file import paper_scene
 from tests.conftest import PROJECT_DIR
 
 
@@ -105,7 +105,7 @@ def test_missing_freefem_is_reported_before_any_work(tmp_path):
 
 
 def test_the_default_penalty_follows_the_interface_elements():
-    """theta = 4e-3 E times the interface element's length (orchestrate/penalty.py shows
+    """theta = 4e-3 E times the interface element's length (studies/penalty.py shows
     its error below the mesh's at levels 1-3); the paper's loop keeps the paper's 1e-3;
     a theta given is kept."""
     assert Settings().theta == pytest.approx(2.5e-4, rel=1e-12)

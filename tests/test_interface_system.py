@@ -1,5 +1,5 @@
 """Each contact set's fixed point solved directly from the subdomains' Robin maps
-(orchestrate/interface_system.py).
+(orchestrate/ddm/interface_system.py).
 
 The system is assembled from the same Robin laws the loop evaluates; its solution must
 be a fixed point of the loop's own iteration (robin_data, the maps' replies,
@@ -12,16 +12,16 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.discretization import discretize
+from orchestrate.mesh.discretization import discretize
 from orchestrate.errors import ParameterError
-from orchestrate.exchange import parse_reply, request_arrays
-from orchestrate.interface_system import InterfaceSystem
-from orchestrate.robin import robin_data, robin_laws, state_after_solve
-from orchestrate.robin_map import RobinMap
-from orchestrate.scene import Settings
-from orchestrate.scene_file import SCENES_DIR, load_scene, paper_scene
-from orchestrate.solve import solve
-from orchestrate.state import StateLayout
+from orchestrate.workers.exchange import parse_reply, request_arrays
+from orchestrate.ddm.interface_system import InterfaceSystem
+from orchestrate.ddm.robin import robin_data, robin_laws, state_after_solve
+from orchestrate.workers.robin_map import RobinMap
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
+from orchestrate.run.solve import solve
+from orchestrate.ddm.state import StateLayout
 
 EPS_U = 1e-6
 

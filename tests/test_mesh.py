@@ -7,11 +7,11 @@ import meshio
 import numpy as np
 import pytest
 
-from orchestrate.discretization import discretize
-from orchestrate.labels import LABELS
-from orchestrate.mesh import body_mesh, coating_mesh, write_medit
-from orchestrate.scene import Settings
-from orchestrate.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
+from orchestrate.mesh.discretization import discretize
+from orchestrate.mesh.labels import LABELS
+from orchestrate.mesh.meshes import body_mesh, coating_mesh, write_medit
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
 from tests.conftest import full_model
 
 
@@ -123,7 +123,7 @@ def test_a_body_is_meshed_once_per_plan(tmp_path, monkeypatch):
     """A sweep meshes its kept bodies again scene after scene: the second time the mesh
     (and the medit text) come from the cache, equal to the first; a copy the caller
     changes leaves the cache alone; another plan is meshed anew."""
-    from orchestrate import mesh as meshing
+    from orchestrate.mesh import meshes as meshing
     base = discretize(paper_scene(), Settings()).subdomains["base"].plan
     first = meshing.write_body_mesh(base, tmp_path / "first.mesh")
     calls = []

@@ -1,10 +1,10 @@
-"""model = "auto" (orchestrate/model_choice.py): the a priori contact half-width, the
+"""model = "auto" (orchestrate/model/model_choice.py): the a priori contact half-width, the
 estimate of each coating model's error against a measured one, and the choice.
 
-The estimate's constants were fitted on the calibration set (orchestrate/adequacy.py);
+The estimate's constants were fitted on the calibration set (studies/adequacy.py);
 its check here is on a scene of the held-out set, which neither its forms nor its
 constants saw, measured against the mesh-converged 2D model
-(orchestrate/model_errors.py): paper h2 = 0.45 b, E2 = 0.3 E, where the Timoshenko shell
+(studies/model_errors.py): paper h2 = 0.45 b, E2 = 0.3 E, where the Timoshenko shell
 is 25 % too stiff in contact stress and 29 % on the bond, the stretch shell 0.9 % and
 0.7 % (all judged: above 0.2 %). The whole held-out study is `make adequacy` (docs/findings.md)."""
 
@@ -16,10 +16,10 @@ import sys
 
 import pytest
 
-from orchestrate import model_choice
-from orchestrate.model_errors import measure, peaks, with_model
-from orchestrate.scene import Settings
-from orchestrate.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
+from orchestrate.model import model_choice
+from studies.model_errors import measure, peaks, with_model
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
 from tests.conftest import PROJECT_DIR
 
 AUTO = model_choice.AUTO

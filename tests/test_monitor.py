@@ -7,7 +7,7 @@ import sys
 
 import numpy as np
 
-from orchestrate.robin import ConvergenceMonitor
+from orchestrate.ddm.robin import ConvergenceMonitor
 from tests.conftest import PROJECT_DIR
 
 

@@ -21,10 +21,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.monolithic import monolithic_solution
-from orchestrate.scene import Scene, Settings
-from orchestrate.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
-from orchestrate.solve import solve
+from orchestrate.run.monolithic import monolithic_solution
+from orchestrate.model.scene import Scene, Settings
+from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
+from orchestrate.run.solve import solve
 
 
 def _file(name, **overrides):
@@ -136,7 +136,7 @@ def test_the_2d_coating_of_the_bodies_modulus_is_one_body_with_them():
     the coated-uncoated distance (0.27 %) is of the size of that mesh's discretisation
     error, estimated by the change to the next mesh (0.20 %), and it halves on the next
     mesh (0.13 %)."""
-    from orchestrate.claims import distance
+    from studies.claims import distance
 
     coated = paper_scene(h2=0.125, E2=1.0, model="elastic")
     uncoated = apply_overrides(replace(coated, coatings=()), {"base.height": 8.125})

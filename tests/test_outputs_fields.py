@@ -26,13 +26,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate import figures
-from orchestrate.discretization import discretize
-from orchestrate.outputs import STRESS_COMPONENTS, write_shell_fields
-from orchestrate.paraview import RUN_COLLECTION, write_collection, write_sweep_collection
-from orchestrate.scene import Settings
-from orchestrate.scene_file import paper_scene
-from orchestrate.solve import solve
+from studies import figures
+from orchestrate.mesh.discretization import discretize
+from orchestrate.files.outputs import STRESS_COMPONENTS, write_shell_fields
+from orchestrate.run.paraview import RUN_COLLECTION, write_collection, write_sweep_collection
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import paper_scene
+from orchestrate.run.solve import solve
 
 BODIES = ("indenter", "base", "coating1")
 FIELDS = ("sigma_eq",) + STRESS_COMPONENTS

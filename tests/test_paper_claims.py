@@ -3,7 +3,7 @@
 Every figure scene is solved (24 runs, both coating models, the default paper meshes)
 by what `make fig3 fig4 fig5` runs, which draws the three figures too, and each claim
 becomes an assertion on the computed data: an ordering, a trend, the place of a maximum
-(orchestrate/claims.py measures them). Where our data contradict a claim, the test
+(studies/claims.py measures them). Where our data contradict a claim, the test
 asserts what the data show and says why; docs/findings.md, "The paper's claims", gives the
 numbers."""
 
@@ -17,13 +17,13 @@ import time
 import pandas as pd
 import pytest
 
-from orchestrate.claims import Runs, distance, left_edge, local_maxima, maximum
-from orchestrate.figure_sweep import (FIGURE_FILES, STAGING, FigureDrawing, figure_runs,
+from studies.claims import Runs, distance, left_edge, local_maxima, maximum
+from studies.figure_sweep import (FIGURE_FILES, STAGING, FigureDrawing, figure_runs,
                                       ready_figures)
-from orchestrate.figure_scenes import FIGURE_HEIGHTS, FIGURE_SCENES
-from orchestrate.paths import FIGURE_SWEEP
-from orchestrate.provenance import forms_digest
-from orchestrate.sweep import load_sweep, named_points
+from studies.figure_scenes import FIGURE_HEIGHTS, FIGURE_SCENES
+from studies.paths import FIGURE_SWEEP
+from orchestrate.workers.provenance import forms_digest
+from orchestrate.sweeps.sweep import load_sweep, named_points
 from tests.conftest import PROJECT_DIR
 
 HEIGHTS = FIGURE_HEIGHTS
@@ -31,10 +31,10 @@ HEIGHTS = FIGURE_HEIGHTS
 
 @pytest.fixture(scope="module")
 def figures(tmp_path_factory):
-    """The folder `python -m orchestrate figures --out` filled: the figure sweep's runs
+    """The folder `python -m studies.figure_sweep --out` filled: the figure sweep's runs
     (figures/) and the three figures."""
     out = tmp_path_factory.mktemp("figures")
-    done = subprocess.run([sys.executable, "-m", "orchestrate", "figures", "--out", str(out)],
+    done = subprocess.run([sys.executable, "-m", "studies.figure_sweep", "--out", str(out)],
                           cwd=PROJECT_DIR, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     return out
@@ -60,7 +60,7 @@ def test_the_figures_command_draws_the_three_figures_from_its_sweep(figures):
 
 
 def test_the_figure_scenes_warn_only_where_the_shell_is_measured_off(figures):
-    """No figure scene leaves the model (orchestrate/validity.py) but the shell runs whose
+    """No figure scene leaves the model (orchestrate/run/validity.py) but the shell runs whose
     estimated model error exceeds the 1 % tolerance: there the warning is right. Each
     shell run is measured against the 2D model's run of the same scene (peak contact
     stress and peak bond stress, the estimate's two quantities): the warning is given
@@ -114,7 +114,7 @@ def test_a_run_that_did_not_converge_keeps_out_only_the_figures_that_draw_it(fig
     summary = next((tmp_path / "figures" / "runs").glob("*model=shell_h2=0.5_E2=5")) / "summary.json"
     report = json.loads(summary.read_text())
     summary.write_text(json.dumps({**report, "status": "stagnated", "converged": False}))
-    done = subprocess.run([sys.executable, "-m", "orchestrate", "figures", "--out",
+    done = subprocess.run([sys.executable, "-m", "studies.figure_sweep", "--out",
                            str(tmp_path)], cwd=PROJECT_DIR, capture_output=True, text=True)
     assert done.returncode == 1 and "1 stagnated" in done.stdout
     assert sorted(path.name for path in tmp_path.glob("fig*.png")) == ["fig3.png", "fig5.png"]
@@ -177,13 +177,13 @@ def test_a_figure_is_drawn_once_the_runs_it_draws_have_converged(tmp_path):
 
 
 def test_make_draws_the_figures_from_the_one_list_of_scenes():
-    """`make fig3` runs `python -m orchestrate figures`: the figure sweep (the only list of
-    the figure scenes, which orchestrate/figures.py reads too) into results/figures/, then
+    """`make fig3` runs `python -m studies.figure_sweep`: the figure sweep (the only list of
+    the figure scenes, which studies/figures.py reads too) into results/figures/, then
     the drawing; that list has the 24 scenes of figs. 3-5."""
     make = subprocess.run(["make", "-n", "-B", "fig3"], cwd=PROJECT_DIR, capture_output=True,
                           text=True).stdout
-    assert "-m orchestrate figures" in make
-    assert FIGURE_SWEEP == PROJECT_DIR / "orchestrate" / "sweeps" / "figures.toml"
+    assert "-m studies.figure_sweep" in make
+    assert FIGURE_SWEEP == PROJECT_DIR / "studies" / "sweeps" / "figures.toml"
     assert len(FIGURE_SCENES) == 24
     assert {(m, E2) for m, _, E2 in FIGURE_SCENES} == {
         ("shell", 5.0), ("shell", 1.0), ("elastic", 5.0), ("elastic", 1.0), ("elastic", 0.2)}

@@ -1,4 +1,4 @@
-"""The plot of one run (orchestrate/plot.py) for an engineer: zoomed on the contact,
+"""The plot of one run (orchestrate/plots/plot.py) for an engineer: zoomed on the contact,
 patch ends and their singular values kept out of the y scale, the run's units on the
 axes, the scene in the title, the summary's warnings under the axes.
 
@@ -17,11 +17,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.answers import near_patch_ends
-from orchestrate.plot import plot_run, singular_ends, stresses_figure, zone_margin
-from orchestrate.scene import Settings, scene_from_dict
-from orchestrate.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
-from orchestrate.solve import solve
+from orchestrate.run.answers import near_patch_ends
+from orchestrate.plots.plot import plot_run, singular_ends, stresses_figure, zone_margin
+from orchestrate.model.scene import Settings, scene_from_dict
+from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
+from orchestrate.run.solve import solve
 
 
 @pytest.fixture(scope="module")

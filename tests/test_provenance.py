@@ -1,6 +1,6 @@
 """Every run says what it ran, and an edited form takes effect in every path.
 
-The forms are read from a copy of freefem/ (ORCHESTRATE_FORMS, orchestrate/freefem.py),
+The forms are read from a copy of freefem/ (ORCHESTRATE_FORMS, orchestrate/workers/freefem.py),
 edited here as a user edits freefem/: the bodies' law made 25 % stiffer (the Lame
 constants' functions of elasticity.idp scaled). Then a fresh run, a kept worker (a
 Session) and a resumed sweep must all give the edited law's answer, and the recorded
@@ -20,9 +20,8 @@ import pandas as pd
 import pytest
 
 import orchestrate
-from orchestrate import freefem
-from orchestrate.paths import FREEFEM_DIR
-from orchestrate.provenance import forms_digest, forms_hashes
+from orchestrate.paths import FORMS_VARIABLE, FREEFEM_DIR
+from orchestrate.workers.provenance import forms_digest, forms_hashes
 from tests.conftest import PROJECT_DIR
 
 SCENE = {"h2": 0.125, "E2": 1.0, "model": "shell"}
@@ -43,7 +42,7 @@ def forms(tmp_path, monkeypatch):
     """A copy of freefem/ that the runs read."""
     copy = tmp_path / "forms"
     shutil.copytree(FREEFEM_DIR, copy)
-    monkeypatch.setenv(freefem.FORMS_VARIABLE, str(copy))
+    monkeypatch.setenv(FORMS_VARIABLE, str(copy))
     return copy
 
 
@@ -123,7 +122,7 @@ def test_forms_edited_while_a_sweep_runs_leave_no_stale_point(forms, tmp_path):
     """The forms edited once the first point is solved (the sweep's worker process keeps
     its FreeFEM workers from point to point): the later points restart their workers,
     and the first is solved again once the pass is over; every row is the edited law's."""
-    from orchestrate.sweep import run_sweep
+    from orchestrate.sweeps.sweep import run_sweep
 
     sweep = tmp_path / "sweep.toml"
     sweep.write_text('name = "mid"\n[fixed]\nmodel = "shell"\n[grid]\nh2 = [0.25, 0.125]\n')

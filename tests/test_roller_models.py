@@ -1,5 +1,5 @@
 """The coated roller (orchestrate/scenes/roller.toml, E2 = E): the shell and the 2D
-coating models come closer as the coating thins (orchestrate/roller_models.py).
+coating models come closer as the coating thins (studies/roller_models.py).
 
 Two thicknesses, R/64 = b/4 and R/256 = b/16, two halvings apart; at both the 2D
 coating keeps the shell's interface elements, so the curves are compared point by
@@ -20,7 +20,7 @@ them apart by a quarter of their present difference at R/256 fails it. The shell
 is the stiffer, its peak the higher (peak_diff > 0). About 15 s (four runs).
 """
 
-from orchestrate.roller_models import radius, study_row
+from studies.roller_models import radius, study_row
 
 FALL = 2.5               # over two halvings of h2
 PEAK_BOUND = 0.006       # measured 0.0048 at R/256

@@ -2,7 +2,7 @@
 
 - Pinned: the summary, computed once with the stopping test of the Robin loop that
   bounds the error of the displacements and of each traction component, with a margin
-  (orchestrate/robin.py), to 1e-8. It is within 2e-9 of a run to eps_u = 1e-11. The
+  (orchestrate/ddm/robin.py), to 1e-8. It is within 2e-9 of a run to eps_u = 1e-11. The
   numbers computed before the scene became a list of subdomains and interfaces (commit
   f105ec1), which the paper's scene file reproduced to 2e-11, stopped on the
   displacements' change alone and differ from these by up to 1.6e-5 (the contact
@@ -23,13 +23,13 @@ import math
 
 import pytest
 
-from orchestrate.scene import Settings
-from orchestrate.scene_file import paper_scene
-from orchestrate.solve import solve
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import paper_scene
+from orchestrate.run.solve import solve
 
 
 # The pins below were computed at the paper's penalty theta = 1e-3 b/E, the default
-# until the default was tied to the mesh (2.5e-4 b/E on this mesh, orchestrate/penalty.py):
+# until the default was tied to the mesh (2.5e-4 b/E on this mesh, studies/penalty.py):
 # this run keeps that penalty, so that the pins keep their meaning. They are the iterated
 # loop's (a direct solve of each contact set, tests/test_interface_system.py, gives the
 # same within the tolerance, in fewer iterations).

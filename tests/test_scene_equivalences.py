@@ -15,9 +15,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.scene import Settings
-from orchestrate.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
-from orchestrate.solve import solve
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
+from orchestrate.run.solve import solve
 from tests.conftest import full_model
 
 TIGHT = Settings(eps_u=1e-10)

@@ -6,8 +6,8 @@ import sys
 
 import pytest
 
-from orchestrate.scene import ParameterError
-from orchestrate.scene_file import SCENES_DIR, load_scene, paper_scene, scene_and_settings
+from orchestrate.model.scene import ParameterError
+from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene, scene_and_settings
 from tests.conftest import PROJECT_DIR
 
 BASE = """

@@ -1,5 +1,5 @@
-"""Workers that outlive a scene (orchestrate/session.py) and their Robin-to-trace maps
-(orchestrate/robin_map.py).
+"""Workers that outlive a scene (orchestrate/workers/session.py) and their Robin-to-trace maps
+(orchestrate/workers/robin_map.py).
 
 Two scenes that differ only in the coating's thickness share the base, and the indenter
 up to a shift by the change of h2: in one session the second scene takes both workers
@@ -17,12 +17,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.robin_map import RobinMap, check
-from orchestrate.scene import Settings
-from orchestrate.scene_file import SCENES_DIR, load_scene, paper_scene
-from orchestrate.session import Session, body_fingerprint
-from orchestrate.solve import solve
-from orchestrate.worker import WorkerError
+from orchestrate.workers.robin_map import RobinMap, check
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
+from orchestrate.workers.session import Session, body_fingerprint
+from orchestrate.run.solve import solve
+from orchestrate.workers.worker import WorkerError
 
 SAME = 1e-10      # two solves of one factorisation agree to rounding
 

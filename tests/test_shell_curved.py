@@ -71,7 +71,7 @@ import numpy as np
 import pytest
 from numpy.polynomial import Chebyshev
 
-from orchestrate import freefem
+from orchestrate.workers import freefem
 
 # Material and loads: none equal to the script's defaults, so an ignored argument fails.
 YOUNG, POISSON, SHEAR_FACTOR = 3.5, 0.25, 0.9

@@ -1,6 +1,6 @@
 """A run called converged is right within its tolerance, whatever the accepted settings.
 
-The stopping test (orchestrate/robin.py) bounds the error of the interface displacements
+The stopping test (orchestrate/ddm/robin.py) bounds the error of the interface displacements
 and tractions by the residual times the amplification the loop has shown; a run at the
 default eps_u = 1e-6 must then be within eps_u of the same scene run to 1e-9, in the
 contact and the bond stresses (relative L2), also where the loop is slow: a Robin
@@ -14,9 +14,9 @@ import pandas as pd
 import pytest
 
 from orchestrate.errors import RunFailed
-from orchestrate.scene import Settings
-from orchestrate.scene_file import paper_scene
-from orchestrate.solve import solve
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import paper_scene
+from orchestrate.run.solve import solve
 
 CASES = {
     "gamma 0.01": dict(robin=0.01, max_iterations=3000, inner_solve="iterate"),

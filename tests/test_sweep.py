@@ -1,4 +1,4 @@
-"""Parameter sweeps (orchestrate/sweep.py): a row for every run, failures included;
+"""Parameter sweeps (orchestrate/sweeps/sweep.py): a row for every run, failures included;
 resuming after Ctrl-C or a killed driver redoes only the missing runs and ends with the
 table of an uninterrupted sweep; the Dask engine gives the same table; no FreeFEM process
 outlives a sweep. Tables are compared in every column but the timings (``*_s``), numbers
@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.sweep import load_sweep, named_points, run_sweep
+from orchestrate.sweeps.sweep import load_sweep, named_points, run_sweep
 from tests.conftest import PROJECT_DIR
 from tests.test_lifecycle import _processes_mentioning
 
@@ -108,7 +108,7 @@ def test_an_auto_run_is_a_row_with_the_model_chosen_and_its_estimate(uninterrupt
 
 
 def test_a_local_sweep_s_runs_take_over_the_workers_of_the_run_before(uninterrupted):
-    """Each worker process keeps its last run's workers (orchestrate/session.py): the
+    """Each worker process keeps its last run's workers (orchestrate/workers/session.py): the
     points share the indenter (shifted) and the base, so every run after a process's
     first takes those over. Their answers are those of runs alone: the Dask engine runs
     each alone, and its table is this one (test_the_dask_engine_runs_the_same_sweep)."""
@@ -177,7 +177,7 @@ def test_the_dask_engine_runs_the_same_sweep(sweep_file, uninterrupted, tmp_path
 
 
 def test_checking_a_large_sweep_says_how_far_it_is(monkeypatch):
-    from orchestrate import sweep
+    from orchestrate.sweeps import sweep
     monkeypatch.setattr(sweep, "CHECK_REPORT_SECONDS", 0.0)
     said = io.StringIO()
     sweep.check_points([{"h2": 0.1 + 1e-3 * n} for n in range(5)], stream=said)
@@ -216,7 +216,7 @@ def test_points_keep_their_names_when_a_sweep_grows(tmp_path):
 
 
 def test_a_sweep_takes_a_scene_file_and_dotted_keys(tmp_path):
-    from orchestrate.sweep import point_scene
+    from orchestrate.sweeps.sweep import point_scene
     path = tmp_path / "scenes.toml"
     path.write_text('[fixed]\nscene = "discrete.toml"\n"load.force" = 0.01\n'
                     '[grid]\n"coating[2].E" = [2.0, 5.0]\nh2 = [0.25]\n')
@@ -230,7 +230,7 @@ def test_a_sweep_takes_a_scene_file_and_dotted_keys(tmp_path):
 
 
 def test_a_bad_dotted_key_is_refused_before_any_run(tmp_path):
-    from orchestrate.scene import ParameterError
+    from orchestrate.model.scene import ParameterError
     path = tmp_path / "bad.toml"
     path.write_text('[grid]\n"indenter.colour" = [1.0]\n')
     with pytest.raises(ParameterError, match="indenter.colour"):
@@ -356,7 +356,7 @@ def _is_descendant(pid, ancestor):
 
 
 def test_every_row_has_the_runs_answers(uninterrupted):
-    """runs.csv carries summary.json's answers (orchestrate/answers.py), away from the
+    """runs.csv carries summary.json's answers (orchestrate/run/answers.py), away from the
     patches' ends: the peak pressure is the peak contact stress's magnitude."""
     table, _ = uninterrupted
     done = table[table.converged.astype(bool)]

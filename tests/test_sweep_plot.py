@@ -1,6 +1,6 @@
-"""Sweeps for people: run folders named by their values (orchestrate/run_names.py), the
+"""Sweeps for people: run folders named by their values (orchestrate/sweeps/run_names.py), the
 table in the sweep file's order, hash-named folders of older sweeps adopted, a plot of a
-sweep's table (orchestrate/plot_sweep.py), and `plot` on a run that is not there.
+sweep's table (orchestrate/plots/plot_sweep.py), and `plot` on a run that is not there.
 
 One small sweep of the shape of `make stability` (both models over h2, one point at
 another E2, one run of the paper's loop that stops at its iteration limit) is run once,
@@ -17,11 +17,11 @@ import pandas as pd
 import pytest
 
 from orchestrate.errors import ParameterError
-from orchestrate.plot import plot_run
-from orchestrate import plot_sweep as plot_sweep_module
-from orchestrate.plot_sweep import axis_label, plot_sweep, read_runs, select, split_columns
-from orchestrate.run_names import MAX_LENGTH, run_names
-from orchestrate.sweep import load_sweep, named_points, run_sweep
+from orchestrate.plots.plot import plot_run
+from orchestrate.plots import plot_sweep as plot_sweep_module
+from orchestrate.plots.plot_sweep import axis_label, plot_sweep, read_runs, select, split_columns
+from orchestrate.sweeps.run_names import MAX_LENGTH, run_names
+from orchestrate.sweeps.sweep import load_sweep, named_points, run_sweep
 from tests.conftest import PROJECT_DIR
 
 SWEEP = """

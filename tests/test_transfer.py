@@ -12,13 +12,13 @@ element)."""
 import numpy as np
 import pytest
 
-from orchestrate.discretization import discretize
-from orchestrate.exchange import parse_reply, reply_count, request_arrays
-from orchestrate.scene import Settings
-from orchestrate.scene_file import SCENES_DIR, load_scene, paper_scene
-from orchestrate.session import Session
-from orchestrate.subdomains import Subdomains, write_inputs
-from orchestrate.worker import CMD_SOLVE
+from orchestrate.mesh.discretization import discretize
+from orchestrate.workers.exchange import parse_reply, reply_count, request_arrays
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
+from orchestrate.workers.session import Session
+from orchestrate.workers.subdomains import Subdomains, write_inputs
+from orchestrate.workers.worker import CMD_SOLVE
 
 STIFF = 1e12      # Robin coefficient: the data dominate every elastic stiffness
 

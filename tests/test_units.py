@@ -3,7 +3,7 @@
 The twin is the same scene in b and E: lengths / b, moduli / E (the stiffer body's
 modulus), the force / (E b). Every file and the summary of the mm run must be the twin's
 scaled by the unit of its kind; the factors are written out here, apart from the code's
-registry (orchestrate/units.py), so that a wrong kind there fails.
+registry (orchestrate/model/units.py), so that a wrong kind there fails.
 """
 
 import dataclasses
@@ -17,9 +17,9 @@ import pytest
 
 import orchestrate
 from orchestrate.errors import ParameterError
-from orchestrate.scene import Base, Coating, Indenter, Load
-from orchestrate.scene_file import load_scene
-from orchestrate.units import SCENE_KINDS
+from orchestrate.model.scene import Base, Coating, Indenter, Load
+from orchestrate.model.scene_file import load_scene
+from orchestrate.model.units import SCENE_KINDS
 
 B, E = 2.5, 70000.0     # b in mm, E in MPa
 LENGTH, STRESS, FORCE, MOMENT = B, E, E * B, E * B * B
@@ -202,8 +202,8 @@ def test_the_mm_example_is_the_solver_scene_in_b_and_E():
     """orchestrate/scenes/cylinder_mm.toml (steel, MPa, mm): its dimensionless form has
     the stiffer body's modulus 1 and its lengths divided by b = 1 mm; the force in N/mm
     becomes force / (E b)."""
-    from orchestrate.scene_file import SCENES_DIR
-    from orchestrate.units import dimensionless
+    from orchestrate.model.scene_file import SCENES_DIR
+    from orchestrate.model.units import dimensionless
     scene, _ = load_scene(SCENES_DIR / "cylinder_mm.toml")
     solved, scales = dimensionless(scene)
     assert (scales.length, scales.stress) == (1.0, 210000.0)
@@ -213,7 +213,7 @@ def test_the_mm_example_is_the_solver_scene_in_b_and_E():
 
 
 def test_a_run_in_b_and_E_starts_from_its_twin_in_mm(twins, tmp_path):
-    """orchestrate/warm_start.py reads a run's files in their units: the twin in b and E,
+    """orchestrate/run/warm_start.py reads a run's files in their units: the twin in b and E,
     started from the mm run's state, stops within a few iterations at its own answer."""
     mm, twin = twins
     summary = orchestrate.solve(twin.parent / "twin.toml").summary

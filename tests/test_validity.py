@@ -1,4 +1,4 @@
-"""Warnings where a run leaves what the tool models (orchestrate/validity.py).
+"""Warnings where a run leaves what the tool models (orchestrate/run/validity.py).
 
 Each warning is produced by a scene that triggers it, with the measured value it reports
 checked against the run's own numbers, and a scene inside the model has none; the
@@ -13,9 +13,9 @@ import sys
 import pytest
 
 from orchestrate.errors import RunFailed
-from orchestrate.scene_file import scene_and_settings
-from orchestrate.solve import solve
-from orchestrate.validity import (COATING_SHARE, DESCENT_LIMIT, ELEMENTS_ACROSS,
+from orchestrate.model.scene_file import scene_and_settings
+from orchestrate.run.solve import solve
+from orchestrate.run.validity import (COATING_SHARE, DESCENT_LIMIT, ELEMENTS_ACROSS,
                                   MISMATCH_LIMIT_DEG, MODULUS_SHARE, STRAIN_LIMIT)
 from tests.conftest import PROJECT_DIR, steel_scene
 
@@ -168,10 +168,10 @@ def test_strict_exits_with_status_5_after_a_run_warned_and_writes_its_results(tm
 
 def test_a_mesh_too_coarse_for_the_predicted_contact_is_said_before_any_work(tmp_path):
     """Elements of 2.5 mm for a contact predicted 1.8 mm wide: said before any work (the
-    limit, 10 elements across, is orchestrate/resolution.py's study), the count from
+    limit, 10 elements across, is studies/resolution.py's study), the count from
     the a priori half-width, and again by the run from the zone it found."""
-    from orchestrate.model_choice import contact_half_width
-    from orchestrate.solve import prepare
+    from orchestrate.model.model_choice import contact_half_width
+    from orchestrate.run.solve import prepare
 
     scene, settings = scene_and_settings(steel_scene(tmp_path / "steel.toml"), {},
                                          {"element_size": "2.5 mm"})

@@ -1,4 +1,4 @@
-"""A run started from a finished neighbour (orchestrate/warm_start.py).
+"""A run started from a finished neighbour (orchestrate/run/warm_start.py).
 
 The state read back from a run's files is the state it converged to: started from its
 own files, a run stops within a few iterations at the same answer. Started from a
@@ -13,11 +13,11 @@ import pandas as pd
 import pytest
 
 from orchestrate.errors import ParameterError
-from orchestrate.scene import Settings
-from orchestrate.scene_file import paper_scene
-from orchestrate.solve import solve
-from orchestrate.sweep import load_sweep, run_sweep
-from orchestrate.warm_start import nearest
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import paper_scene
+from orchestrate.run.solve import solve
+from orchestrate.sweeps.sweep import load_sweep, run_sweep
+from orchestrate.run.warm_start import nearest
 
 TOLERANCE = Settings().eps_u
 

@@ -1,0 +1,572 @@
+"""The Robin domain decomposition loop (21)-(24) on the interface state.
+
+Each iteration turns the interface state x (orchestrate/ddm/state.py) into the Robin
+coefficient alpha and data g of every subdomain, lets the workers solve (each solves
+sigma_n(u) + alpha u = alpha g on its interfaces), and forms the new state from their
+traces and tractions. The paper's loop solves all subdomains at once (Jacobi); the
+active-set loop solves the bodies at once, then the coating patches from the bodies'
+new traces (a Gauss-Seidel sweep, Problem.sweep). Two loops are offered
+(Settings.method):
+
+``paper``: the paper's loop. Robin coefficient gamma = 1/theta, contact set Psi12 from
+    the current iterate at every iteration (20), fixed relaxation (24):
+    x^{k+1} = rho x~^{k+1} + (1 - rho) x^k. Relaxing the traces is the paper's
+    relaxation of the whole fields: every right-hand side depends on the fields through
+    their traces only, linearly. Stops when the relative change of the displacement
+    traces (discrete L2 over S12 and S23) is below eps_u.
+
+``active-set`` (default): the same Robin solves with a free Robin parameter gamma, the
+    Robin coefficient on all of S12 (inactive points get their own trace as data, so
+    no matrix ever changes), and two nested loops. Inside, Psi is frozen, so the map
+    x -> x~ is affine, and Anderson acceleration (orchestrate/ddm/acceleration.py) drives it
+    to its fixed point. Outside, Psi is updated from that fixed point (a semi-smooth
+    Newton step: an active point is released where the contact traction turns tensile,
+    an inactive one enters where the bodies interpenetrate), the history restarts, and
+    the loop goes on until Psi no longer changes and the fixed-point residual
+    ||x~ - x|| / ||x~|| is below eps_u.
+
+Robin parameter. The paper's Robin coefficient is the penalty itself, gamma = 1/theta;
+its loop then contracts like 1 - O(theta E / b) per iteration (hundreds of thousands of
+iterations at a penalty small enough to be accurate). A free gamma uses the Robin-Robin
+exchange of Lions for the penalised laws: each side receives gamma times the
+displacement the interface law asks of it, plus the neighbour's traction weighted by
+(1 - gamma theta). For gamma = 1/theta the neighbour's traction drops out and the data
+are exactly those of (21)-(23); for any gamma the fixed point is the same discrete
+penalised problem (16) (tests/test_monolithic.py checks it).
+"""
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from orchestrate.ddm.acceleration import Anderson
+from orchestrate.ddm.contact import penetration, updated_active_set
+from orchestrate.faults import checkpoint
+from orchestrate.ddm.interface_system import InterfaceSystem
+from orchestrate.ddm.state import StateLayout
+
+
+@dataclass
+class RobinLaw:
+    """One side's Robin condition sigma_n(u) + alpha u = alpha g, its data affine in the
+    state: g = own u + other_u u' + other_t t' + constant, with u the side's own trace and
+    u', t' the other side's trace and traction (coefficients per point, the same for
+    every component; ``constant`` of shape (components, points)). The loop evaluates it
+    (``robin_data``) and the direct solve of a frozen contact set assembles it
+    (orchestrate/ddm/interface_system.py): one law for both."""
+    alpha: np.ndarray
+    own: np.ndarray
+    other_u: np.ndarray
+    other_t: np.ndarray
+    constant: np.ndarray
+
+    def data(self, u, u_other, t_other):
+        """g for the side's trace u and the other side's u', t' (shape (points,) or
+        (components, points)), of shape (components, points)."""
+        g = self.own * u + self.other_u * u_other + self.other_t * t_other + self.constant
+        return np.atleast_2d(g)
+
+
+def robin_laws(problem, layout, psi, theta, gamma, hold_inactive=False):
+    """The Robin law of every side of every interface for the contact set Psi
+    (concatenated over the contact interfaces): ``{(i, side): RobinLaw}``.
+
+    Interface laws (16): on a contact where Psi = 1, t = (d - u_A - u_B)/theta on both
+    sides (normal tractions, compression negative), elsewhere t = 0; on a bond the
+    traction on side B is (u_A - u_B)/theta and on side A (u_B - u_A)/theta. Solving each
+    law for one side's Robin combination t + gamma u, with c = 1 - gamma theta:
+        contact, side A:  alpha = gamma Psi,  g = d - u_B + c t_B / gamma
+        contact, side B:  alpha = gamma Psi,  g = d - u_A + c t_A / gamma
+        bond, side A:     alpha = gamma,      g = u_B - c t_B / gamma
+        bond, side B:     alpha = gamma,      g = u_A - c t_A / gamma
+    For gamma = 1/theta these are (21), (22), (23) with Psi u^k + (d - u1n - w)^- =
+    Psi (d - neighbour) (METHOD.md, global components). At a fixed point the two sides'
+    tractions t1, t2 satisfy (2 - gamma theta)(t1 + t2) = 0 and then the law; so
+    gamma theta must stay away from 2 (Settings refuses gamma theta >= 1.5).
+
+    ``hold_inactive``: alpha = gamma on all of a contact, and where Psi = 0 the data is
+    the side's own trace, g = u^k. The fixed point is the same (there t = gamma (u - u) =
+    0), but no matrix depends on Psi any more: the workers factorise once per run."""
+    c = 1.0 - gamma * theta
+    laws = {}
+    psi_of = dict((i, psi[where]) for i, where in layout.contact_slices())
+    for i, interface in enumerate(problem.interfaces):
+        n, ones, zeros = interface.size, np.ones(interface.size), np.zeros(interface.size)
+        for side in (0, 1):
+            if interface.kind == "contact":
+                active = psi_of[i] > 0
+                if hold_inactive:
+                    law = RobinLaw(np.full(n, gamma), np.where(active, 0.0, 1.0),
+                                   np.where(active, -1.0, 0.0), np.where(active, c / gamma, 0.0),
+                                   np.where(active, interface.gap, 0.0)[None, :])
+                else:
+                    law = RobinLaw(gamma * psi_of[i], zeros, -ones, np.full(n, c / gamma),
+                                   np.asarray(interface.gap, dtype=float)[None, :])
+            else:
+                law = RobinLaw(np.full(n, gamma), zeros, ones, np.full(n, -c / gamma),
+                               np.zeros((2, n)))
+            laws[i, side] = law
+    return laws
+
+
+def robin_data(layout, x, laws):
+    """Robin coefficients and data of every side for the state x^k under ``laws``
+    (robin_laws): ``{(i, side): (alpha, g)}``, g of shape (components, points)."""
+    data = {}
+    for (i, side), law in laws.items():
+        other = 1 - side
+        g = law.data(layout.get(x, "u", i, side), layout.get(x, "u", i, other),
+                     layout.get(x, "t", i, other))
+        data[i, side] = (law.alpha, g)
+    return data
+
+
+def state_after_solve(layout, data, traces, before):
+    """The state ``before`` with every side in ``traces`` replaced by its new trace and
+    the traction of its Robin condition, t = alpha (g - u), which is exactly what that
+    side felt in its solve."""
+    x = before.copy()
+    for i, side in traces:
+        alpha, g = data[i, side]
+        u = traces[i, side]
+        x[layout.slices["u", i, side]] = np.ravel(u)
+        x[layout.slices["t", i, side]] = np.ravel(alpha * (g - u))
+    return x
+
+
+def contact_traction(layout, x):
+    """The mean of both sides' normal tractions at every contact point."""
+    return 0.5 * (layout.contact(x, "t", 0) + layout.contact(x, "t", 1))
+
+
+def state_penetration(layout, x):
+    """d - u_A - u_B at every contact point of the state x (negative: interpenetration)."""
+    return penetration(layout.gap, layout.contact(x, "u", 0), layout.contact(x, "u", 1))
+
+
+def updated_contact_set(layout, psi, x):
+    """The semi-smooth Newton update of Psi from the state x solved with it
+    (contact.updated_active_set)."""
+    return updated_active_set(psi, state_penetration(layout, x), contact_traction(layout, x))
+
+
+# Inner tolerance of the active-set loop while Psi may still change: enough for the
+# tractions to tell tension from compression at most points. Measured on the figure
+# scenes (total iterations of 8 runs): 1e-4: 760, 3e-3: 512, 1e-2: 449, 3e-2: 428 with one
+# run cycling (caught, finished at eps_u: 94). The final answer does not depend on it.
+ACTIVE_SET_TOLERANCE = 1e-2
+
+# The stopping test's amplification needs a few pairs of iterates of the final set.
+MIN_SECANTS = 3
+
+# The amplification a history shows bounds the true one from below: measured against
+# runs to 1e-8 ... 1e-10, the errors of the bond shear were up to 2.3 times the estimate
+# (gamma = 0.01, mesh level 2, element size 0.02 b) and 3.1 times on a 2D coating of
+# E2 = 1e-6 E; those of the pressures were well below it. The stopping test multiplies
+# the estimate by this margin.
+ESTIMATE_MARGIN = 5.0
+
+# Tractions below TRACTION_FLOOR times gamma ||u|| (the Robin coefficient times the
+# displacements: the tractions' natural scale) count as zero in relative changes; real
+# contact and bond tractions are 1e-2 to 1 of it.
+TRACTION_FLOOR = 1e-6
+
+# A traction component (a bond's shear, say) is measured against at least this fraction
+# of the largest component: below, its own relative error is of no use to a reader and
+# out of reach of round-off (a run to eps_u = 1e-10 stagnated on a shear 1e-5 of the
+# pressure).
+COMPONENT_FLOOR = 1e-3
+
+
+@dataclass
+class LoopResult:
+    state: np.ndarray           # traces and tractions of the last solve
+    psi: np.ndarray             # contact set of the last solve
+    iterations: int             # Robin iterations (parallel subdomain solves)
+    converged: bool
+    status: str                 # converged, diverged, stagnated, max_iterations
+    reason: str
+    history: list = field(default_factory=list)
+    descent: float = None       # the stamp's descent in the last solve
+    error_estimate: float = None  # estimated relative error of the state (loops' docstrings)
+
+
+class ConvergenceMonitor:
+    """Stops a loop that diverges or stagnates, and one that hits its iteration limit.
+
+    Diverged: a non-finite value; displacements (the entries ``displacement_mask`` picks;
+    tractions scale with the moduli and follow the displacements) beyond ``growth_limit``
+    times the scene's scale (stamp displacement plus largest gap); or a relative change
+    ``growth_limit`` times above the smallest seen since the last ``restart``. Stagnated: no new smallest
+    relative change (by 10 %) in ``window`` iterations."""
+
+    def __init__(self, max_iterations, displacement_scale, window, growth_limit=1e3,
+                 displacement_mask=None):
+        self.max_iterations = max_iterations
+        self.displacement_mask = displacement_mask
+        self.displacement_scale = displacement_scale
+        self.window = window
+        self.growth_limit = growth_limit
+        self.restart(0)
+
+    def restart(self, iteration):
+        self.best_change, self.best_iteration = math.inf, iteration
+
+    def check(self, iteration, x, change):
+        """``(status, reason)`` when the loop must stop for failure, else None."""
+        if not (np.all(np.isfinite(x)) and math.isfinite(change)):
+            return "diverged", f"non-finite values at iteration {iteration}"
+        displacements = x if self.displacement_mask is None else x[self.displacement_mask]
+        largest = float(np.max(np.abs(displacements), initial=0.0))
+        if largest > self.growth_limit * self.displacement_scale:
+            return "diverged", (f"a displacement reached {largest:.3g}, over "
+                                f"{self.growth_limit:g} times the scene's scale "
+                                f"{self.displacement_scale:.3g}, at iteration {iteration}")
+        if change > self.growth_limit * self.best_change:
+            return "diverged", (f"relative change grew from {self.best_change:.3g} "
+                                f"(iteration {self.best_iteration}) to {change:.3g} "
+                                f"(iteration {iteration})")
+        if change < 0.9 * self.best_change:
+            self.best_change, self.best_iteration = change, iteration
+        elif iteration - self.best_iteration >= self.window:
+            return "stagnated", (f"relative change stuck near {self.best_change:.3g} for "
+                                 f"{self.window} iterations")
+        if iteration >= self.max_iterations:
+            return "max_iterations", (f"relative change {change:.3g} after {iteration} "
+                                      "iterations")
+        return None
+
+
+def run_robin_loop(solve, problem, settings, progress=None, start=None, robin_maps=None,
+                   coarse=None):
+    """Iterate until converged or stopped; the workers keep the fields of the last solve.
+
+    ``solve(data, names)`` performs the solves of the subdomains ``names`` at once and
+    returns the traces of their sides, each worker's CPU seconds and the stamp's descent
+    (orchestrate/workers/subdomains.py).
+    ``start``: the active-set loop's first iterate (orchestrate/run/warm_start.py), else
+    zero; the paper's loop always starts from zero, as the paper's does.
+    ``robin_maps(data)``: every subdomain's Robin map at the coefficients of ``data``, or
+    None (Subdomains.robin_maps); with them the active-set loop solves each contact
+    set's fixed point directly (orchestrate/ddm/interface_system.py). ``coarse``: a
+    CoarseCorrection (orchestrate/ddm/coarse.py) for the iterated active-set loop."""
+    if settings.method == "paper":
+        return _PaperLoop(solve, problem, settings, progress).run()
+    loop = _ActiveSetLoop(solve, problem, settings, progress)
+    loop.start_state = start
+    loop.robin_maps = robin_maps
+    loop.coarse = coarse
+    return loop.run()
+
+
+def displacement_scale(problem):
+    """The scene's scale of displacements: the largest initial gap plus the stamp's
+    descent (or, under a force, the force over the softest modulus)."""
+    scene = problem.scene
+    gap = max((float(np.max(i.gap)) for i in problem.contacts), default=0.0)
+    if scene.load.displacement is not None:
+        return scene.load.displacement + gap
+    moduli = [scene.indenter.E, scene.base.E] + [c.E for c in scene.coatings]
+    return scene.load.force / min(moduli) + gap
+
+
+class _Loop:
+    """What both loops share: one Robin iteration, its history row, the monitor."""
+
+    window = 500
+    hold_inactive = False
+    multiplicative = False    # all subdomains at once (Jacobi), or Problem.sweep's groups
+
+    def __init__(self, solve, problem, settings, progress):
+        self.solve, self.problem, self.settings, self.progress = solve, problem, settings, progress
+        self.sweep = problem.sweep if self.multiplicative else (tuple(problem.subdomains),)
+        self.layout = StateLayout(problem.interfaces)
+        self.gamma = problem.robin
+        self.monitor = ConvergenceMonitor(settings.max_iterations, displacement_scale(problem),
+                                          self.window,
+                                          displacement_mask=self.layout.displacement_mask)
+        self.history = []
+        self.start = time.perf_counter()
+        self.descent = None
+        self.estimate = math.inf
+        self.direct = False       # whether this iteration solved its contact set directly
+
+    def laws(self, psi):
+        return robin_laws(self.problem, self.layout, psi, self.problem.penalty, self.gamma,
+                          self.hold_inactive)
+
+    def iterate(self, x, psi):
+        """Solve every subdomain for the state x and the contact set psi; return x~. The
+        groups of ``sweep`` solve one after the other, each from the state the groups
+        before it left."""
+        laws, image, seconds = self.laws(psi), x, {"wait": 0.0}
+        for group in self.sweep:
+            data = robin_data(self.layout, image, laws)
+            traces, group_seconds, descent = self.solve(data, group)
+            image = state_after_solve(self.layout, data, traces, image)
+            seconds = {**seconds, **group_seconds,
+                       "wait": seconds["wait"] + group_seconds["wait"]}
+            self.descent = descent if descent is not None else self.descent
+        self.seconds = seconds
+        return image
+
+    def record(self, image, psi, previous_psi, change, update, status=None):
+        layout = self.layout
+        traction = layout.contact(image, "t", 0) + layout.contact(image, "t", 1)
+        row = {
+            "iteration": len(self.history) + 1,
+            "relative_change": max(change[:2]),
+            "displacement_change": change[0],
+            "traction_change": change[1],
+            "traction_component_change": change[2],
+            "error_estimate": self.estimate,
+            "active_points": int(psi.sum()),
+            "active_set_changed": previous_psi is not None and bool(np.any(psi != previous_psi)),
+            "active_set_update": update,
+            "contact_force": -0.5 * float(np.dot(layout.contact_weight,
+                                                 traction * layout.contact_normal_x2)),
+            "descent": self.descent,
+            "direct": self.direct,
+            "seconds": time.perf_counter() - self.start,
+            "wait": self.seconds["wait"],
+        }
+        for name in self.problem.subdomains:
+            row[f"cpu_{name}"] = self.seconds[name]
+        for name in self.problem.subdomains:
+            row[f"back_{name}"] = self.seconds[f"back_{name}"]
+        self.history.append(row)
+        if len(self.history) == 3:
+            checkpoint("iterating")
+        if self.progress is not None:
+            self.progress(row, status or "running")
+
+    def relative_change(self, new, old):
+        """(displacements, tractions, traction components): the change from old to new
+        relative to new, in the discrete L2 norms of the interfaces; the tractions as a
+        whole, and the largest over their components (a bond's shear is read apart from
+        its peel stress, and is often much smaller: its relative change jumps with every
+        new contact set, so the monitor watches the first two only). Tractions are
+        measured against at least TRACTION_FLOOR gamma ||u||: without contact they are
+        zero up to round-off, and their relative change would be noise."""
+        norms, changes = self.layout.part_norms(new), self.layout.part_norms(new - old)
+        sizes = self.part_sizes(norms)
+        parts = changes / sizes
+        whole = np.linalg.norm(changes[1:]) / max(np.linalg.norm(norms[1:]),
+                                                  self.traction_floor(norms[0]))
+        return float(parts[0]), float(whole), float(np.max(parts[1:], initial=0.0))
+
+    def traction_floor(self, u):
+        """TRACTION_FLOOR gamma ||u||, the least a traction is measured against."""
+        return max(TRACTION_FLOOR * self.gamma * u, 1e-300)
+
+    def part_sizes(self, norms):
+        """What the relative errors of the parts (StateLayout.parts) with these norms are
+        measured against: a traction component's at least traction_floor and
+        COMPONENT_FLOOR times the largest component."""
+        sizes = norms.copy()
+        floor = max(self.traction_floor(norms[0]),
+                    COMPONENT_FLOOR * np.max(norms[1:], initial=0.0))
+        sizes[1:] = np.maximum(sizes[1:], floor)
+        sizes[0] = max(sizes[0], 1e-300)
+        return sizes
+
+    def error_estimate(self, image, x, anderson, scale):
+        """The largest relative error of a part of the state (_ActiveSetLoop's docstring):
+        ||r|| max ||dx_part|| / ||dr|| / ||x_part||, in the scaled norm of the
+        acceleration (displacements as they are, tractions over gamma)."""
+        sizes = self.part_sizes(self.layout.part_norms(image))
+        sizes[1:] /= self.gamma                       # the acceleration's scaling
+        residual = float(np.linalg.norm((image - x) * scale))
+        hidden = np.maximum(anderson.amplification(), 1.0) * residual
+        return ESTIMATE_MARGIN * float(np.max(hidden / sizes))
+
+    def converged(self, error):
+        eps = self.settings.eps_u
+        return error < eps, (f"estimated error {error:.3g} < eps_u = {eps:g} in the "
+                             "interface displacements and tractions")
+
+    def result(self, image, psi, status, reason):
+        return LoopResult(image, psi, len(self.history), status == "converged", status,
+                          reason, self.history, self.descent, self.estimate)
+
+
+class _PaperLoop(_Loop):
+    """(21)-(24): Psi from every iterate, fixed relaxation rho.
+
+    A fixed-point iteration that contracts by q per step is still ||x_k - x_{k-1}|| q /
+    (1 - q) away from its limit: the paper's stopping test, the change alone, stops a
+    slow loop far from its answer. The error is estimated as the active-set loop's is
+    (error_estimate), from the last AMPLIFICATION_WINDOW pairs of iterates, and from the
+    contraction q read off the last CONTRACTION_WINDOW changes; the larger counts. (The
+    contraction alone, over 10 iterations, was fooled by the jumps of a contact set that
+    changes every iteration: at theta = 1e-3 it called converged a run 42 % off in force.)"""
+
+    CONTRACTION_WINDOW = 10
+    AMPLIFICATION_WINDOW = 50
+
+    def run(self):
+        layout, rho = self.layout, self.settings.rho
+        scale = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
+        scale = scale * np.sqrt(layout.entry_weight)
+        history = Anderson(scale, memory=self.AMPLIFICATION_WINDOW, parts=layout.parts)
+        x, previous_psi, changes = layout.zeros(), None, []
+        for iteration in range(1, self.settings.max_iterations + 1):
+            psi = (state_penetration(self.layout, x) < 0).astype(float)
+            image = self.iterate(x, psi)
+            history.record(x, image)
+            x_new = rho * image + (1.0 - rho) * x
+            change = self.relative_change(x_new, x)
+            changes.append(max(change))
+            amplified = (self.error_estimate(image, x, history, scale)
+                         if history.secants >= MIN_SECANTS else math.inf)
+            x = x_new
+            self.estimate = max(changes[-1], amplified,
+                                _contraction_bound(changes, self.CONTRACTION_WINDOW))
+            done, reason = self.converged(self.estimate)
+            if done:
+                self.record(image, psi, previous_psi, change, 0, "converged")
+                return self.result(image, psi, "converged", reason)
+            failure = self.monitor.check(iteration, x, max(change[:2]))
+            self.record(image, psi, previous_psi, change, 0, failure and failure[0])
+            if failure:
+                return self.result(image, psi, *failure)
+            previous_psi = psi
+        raise AssertionError("the monitor stops at max_iterations")
+
+
+def _contraction_bound(changes, window):
+    """q/(1 - q) times the last change, q the mean contraction over the last ``window``
+    changes (infinite while there are too few, or without contraction)."""
+    if len(changes) < window + 1 or changes[-1 - window] <= 0:
+        return math.inf
+    q = (changes[-1] / changes[-1 - window]) ** (1.0 / window)
+    return changes[-1] * q / (1.0 - q) if q < 1 else math.inf
+
+
+def first_contact_set(scene, layout, x, supported=False):
+    """Psi of the state x: where the bodies interpenetrate; under a force, or when
+    ``supported``, at least the points the indenter touches first (without a support
+    the problem of a force is singular, and so is the whole interface system of a body
+    held only by its contact: interface_system.py)."""
+    psi = (state_penetration(layout, x) < 0).astype(float)
+    if (scene.load.force is not None or supported) and not psi.any():
+        psi = (layout.gap <= np.min(layout.gap) + 1e-12 * np.max(layout.gap)).astype(float)
+    return psi
+
+
+class _ActiveSetLoop(_Loop):
+    """Anderson-accelerated Robin iterations for a frozen Psi, Psi updated in between.
+
+    Psi is updated once the inner residual is below ACTIVE_SET_TOLERANCE. Should Psi
+    return to a set already tried, the updates were too inexact to tell the edge points
+    apart: from then on they wait for the full tolerance eps_u, and only a cycle under
+    that tolerance stops the loop.
+
+    Stopping test. The residual r = x~ - x of an iterate underestimates its distance to
+    the fixed point by up to ||(I - J)^-1|| (1/(1 - q) for a map that contracts by q): a
+    slow map has a small residual far from its answer. The history of the frozen set
+    shows that factor: every pair of iterates gives dr = (J - I) dx, and the largest
+    ||dx|| / ||dr|| (Anderson.amplification) bounds it from below. Each quantity a user
+    reads apart gets its own factor, max ||dx_part|| / ||dr||: the interface
+    displacements, and each traction component of each interface (a contact's pressure,
+    a bond's peel and shear stress): a small component such as a soft coating's bond
+    shear may hide a much larger part of the distance than its share of the residual
+    (measured: 5.7 % off in shear at E2 = 1e-6 E under a test on the whole state). The
+    loop stops when Psi is settled and, for every part, the residual's norm times its
+    factor is below eps_u times the part's norm (tractions: at least TRACTION_FLOOR
+    gamma ||u|| and COMPONENT_FLOOR times the largest component), with at least
+    MIN_SECANTS pairs seen in the final set. Psi is updated on the displacements' change,
+    and after a cycle on the tractions' too (they can lag behind the displacements under
+    a stiff Robin parameter: an edge point flipped on their error at mesh level 3). The
+    estimate carries ESTIMATE_MARGIN."""
+
+    window = 200
+    start_state = None        # the first iterate (warm start), else zero
+    robin_maps = None         # the subdomains' maps, when all have one (interface_system.py)
+    coarse = None             # a CoarseCorrection (coarse.py): first iterate, preconditioner
+    hold_inactive = True      # constant matrices: each worker factorises once (measured:
+                              # +5-10 iterations, -40 % wall time on the figure scenes)
+    multiplicative = True     # the coatings solved from the bodies' fresh traces (a
+                              # Gauss-Seidel sweep; the coatings' solves are the cheap ones):
+                              # measured 110 -> 68 iterations plainly iterated, 27 -> 18
+                              # with two levels at mesh level 3
+
+    def run(self):
+        layout, eps = self.layout, self.settings.eps_u
+        scale = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
+        scale = scale * np.sqrt(layout.entry_weight)
+        anderson = Anderson(scale, parts=layout.parts)
+        if self.start_state is not None:
+            x = self.start_state.copy()
+        elif self.coarse is not None:
+            x = self.coarse.first_state()
+        else:
+            x = layout.zeros()
+        system = self.interface_system(x)
+        psi = first_contact_set(self.problem.scene, layout, x, supported=system is not None)
+        previous_psi, update, seen = None, 0, {psi.tobytes()}
+        tolerance = max(eps, ACTIVE_SET_TOLERANCE)
+        for iteration in range(1, self.settings.max_iterations + 1):
+            self.direct = system is not None
+            if system is not None:
+                x, refined = system.fixed_point(self.laws(psi))
+                rounding = max(self.relative_change(refined, x))
+            image = self.iterate(x, psi)
+            change = self.relative_change(image, x)
+            failure = self.monitor.check(iteration, image, max(change[:2]))
+            new_psi = updated_contact_set(layout, psi, image)
+            psi_settled = np.array_equal(new_psi, psi)
+            if system is not None:
+                # image is x up to rounding; the refinement step sizes the rounding
+                self.estimate = ESTIMATE_MARGIN * max(rounding, max(change))
+                x_next = image
+            else:
+                # Anderson on x + M (image - x), M the coarse correction's (or I): the
+                # same fixed point, and the estimate from that map's own secants
+                target = (image if self.coarse is None
+                          else image + self.coarse.correction(psi, image - x))
+                x_next = anderson.step(x, target)
+                self.estimate = (self.error_estimate(target, x, anderson, scale)
+                                 if anderson.secants >= MIN_SECANTS else math.inf)
+            done, reason = self.converged(self.estimate)
+            if system is not None and psi_settled and not done:
+                system = None     # too ill-conditioned to solve directly: iterate on
+            if done and psi_settled:
+                self.record(image, psi, previous_psi, change, update, "converged")
+                return self.result(image, psi, "converged", f"contact set settled, {reason}")
+            self.record(image, psi, previous_psi, change, update, failure and failure[0])
+            if failure:
+                return self.result(image, psi, *failure)
+            previous_psi = psi
+            # after a cycle, the tractions too (under a stiff Robin parameter they can lag
+            # behind the displacements, and an edge point flips on their error)
+            inexact = change[0] if tolerance > eps else max(change[:2])
+            if inexact < tolerance and not psi_settled:
+                if new_psi.tobytes() in seen:
+                    if tolerance <= eps:
+                        return self.result(image, psi, "stagnated",
+                                           f"the contact set cycles (update {update + 1} "
+                                           "returns to an earlier set)")
+                    tolerance, seen = eps, set()
+                seen.add(new_psi.tobytes())
+                psi, x, update = new_psi, image, update + 1
+                anderson.reset()
+                self.monitor.restart(iteration)
+            else:
+                x = x_next
+        raise AssertionError("the monitor stops at max_iterations")
+
+    def interface_system(self, x):
+        """The frozen-set system of the subdomains' Robin maps, or None where some
+        subdomain has none (its solves are then iterated). The maps do not depend on the
+        contact set (hold_inactive): they are asked with an empty one."""
+        if self.robin_maps is None:
+            return None
+        empty = np.zeros_like(self.layout.gap)
+        maps = self.robin_maps(robin_data(self.layout, x, self.laws(empty)))
+        if maps is None:
+            return None
+        sides = {name: self.problem.sides_of(name) for name in maps}
+        return InterfaceSystem(self.layout, sides, maps)

@@ -1,0 +1,436 @@
+"""The scene as a list of subdomains and of the interfaces between them.
+
+Subdomains: the indenter and the base (P2 elastic bodies meshed by gmsh), and one per
+coating patch (a shell on its mid-line, or a P2 body on a structured mesh). Interfaces:
+
+    bond-coatingI     patch I's bottom bonded to the base (side A: the patch, side B:
+                      the base), two components: tangential and normal displacement;
+    contact-coatingI  the indenter (side A) over patch I's top (side B);
+    contact-baseJ     the indenter over the J-th stretch of bare base (from left to
+                      right) inside the contact zone.
+
+Contact interfaces come first, ordered along the face, then bonds, patch by patch.
+Every interface is a set of points shared by its two sides: the P2 nodes of its
+elements (ends and midpoints) with Simpson's weights of the face's arc length, so that
+the Robin loop and the monolithic solve integrate every coupling term alike and the
+penalty acts node to node. (Gauss points, 5 per element, exact for the P2 x P4
+products, were tried first: they constrain more points per element than a P2 trace has
+nodes, and the contact pressure oscillated near the edge of the contact zone; at the
+nodes it is smooth and the contact set settles in fewer updates.) Each side evaluates its trace
+at its own place for each point: a body at the point of its (polygonal) mesh, a shell
+at the arc length xi along its mid-line; a contact trace is the displacement along the
+side's outward normal (towards the other body), a bond trace the tangential and normal
+components in the face's basis (t, n).
+
+Elements along the faces have the length Settings.element_size / mesh_level; a 2D
+coating has one layer of cells per b/8 of thickness, and cells at most MAX_ASPECT as
+wide as high, so a thin 2D coating refines its interface. A mirror-symmetric full
+model (Scene.mirror_symmetric) gets mirror-symmetric elements and meshes.
+"""
+
+from dataclasses import dataclass
+import math
+
+import numpy as np
+
+from orchestrate.mesh.body_plans import base_plan, indenter_plan
+from orchestrate.model.geometry import IndenterFace, base_face, lowest_point
+from orchestrate.model.scene import MODELS, SHELL_MODELS, ParameterError
+
+# The 2D coating: one layer of cells per b/8 of height, as the paper's 64 ... 512
+# triangles for h2 = b/8 ... b, and at least one; a cell at most MAX_ASPECT times as
+# wide as it is high (the cost the paper alludes to for h2 <= b/16).
+COATING_LAYER_HEIGHT = 0.125
+MAX_ASPECT = 2.0
+
+
+@dataclass(frozen=True, eq=False)
+class Side:
+    """Where one side of an interface takes its trace, point by point.
+
+    body:  ``place`` (n, 2) points of its mesh; ``coefficients`` one (n, 2) array per
+           component: trace = c1 u1 + c2 u2 there.
+    shell: ``place`` (n,) arc lengths xi along its mid-line; ``coefficients`` one (n, 3)
+           array per component: trace = cV v + cW w + cG gamma there, or (n, 4) with
+           + cE epsilon for a shell with thickness stretch."""
+    subdomain: str
+    place: np.ndarray
+    coefficients: tuple
+
+
+@dataclass(frozen=True, eq=False)
+class Interface:
+    name: str
+    kind: str                  # "contact" or "bond"
+    s: np.ndarray              # points: arc length along the base's top face
+    position: np.ndarray       # (n, 2): the points on the partner (contact) or base (bond) face
+    normal: np.ndarray         # (n, 2): unit normal of that face, towards the indenter
+    tangent: np.ndarray        # (n, 2)
+    weight: np.ndarray         # Simpson's weights of the face's arc length
+    gap: np.ndarray            # initial gap along the normal (zero on a bond)
+    sides: tuple               # (Side A, Side B)
+    mismatch: np.ndarray = None  # contact: angle (rad) between the paired faces' normals
+
+    @property
+    def size(self):
+        return len(self.s)
+
+    @property
+    def components(self):
+        return 1 if self.kind == "contact" else 2
+
+    def integrate(self, values):
+        return float(np.dot(self.weight, values))
+
+
+@dataclass(frozen=True)
+class CoatingPlan:
+    """A 2D coating on a structured mesh: columns at ``nodes`` (arc length on the base's
+    face), ``layers`` layers up to ``thickness``."""
+    face: object
+    nodes: np.ndarray
+    thickness: float
+    layers: int
+    top_label: str             # "Contact", or "Free" outside the contact zone
+    start_label: str           # "Symmetry" on the axis of a half model, else "Free"
+
+
+@dataclass(frozen=True)
+class ShellSpec:
+    """A coating patch as a shell on its mid-line: nodes xi (arc length from its start),
+    constant curvature, with or without thickness stretch (the fibre's transverse strain
+    epsilon), its start on the symmetry axis of a half model or free."""
+    nodes: np.ndarray
+    curvature: float
+    thickness: float
+    shear_factor: float
+    thickness_stretch: bool
+    symmetric_start: bool
+    face: object
+    s_start: float             # arc length on the base's face of the patch's start
+    stretch: float             # mid-line length per unit base-face length
+
+
+@dataclass(frozen=True)
+class Subdomain:
+    name: str
+    kind: str                  # "body" or "shell"
+    E: float
+    nu: float
+    plan: object               # BodyPlan, CoatingPlan or ShellSpec
+    stamp: bool = False        # the indenter: loaded by the stamp
+    coating: bool = False      # a coating patch: its interfaces meet the bodies only
+
+
+@dataclass(frozen=True)
+class Problem:
+    scene: object
+    settings: object
+    subdomains: dict           # name -> Subdomain, in a fixed order
+    interfaces: tuple
+    lowest: float              # height of the indenter's lowest point at first touch
+    penalty: float             # theta, in the scene's units (Settings.theta b/E)
+    robin: float               # gamma, in the scene's units (Settings.robin_parameter E/b)
+
+    def sides_of(self, name):
+        """(interface index, side index) of every side of a subdomain, in interface order."""
+        return [(i, k) for i, interface in enumerate(self.interfaces)
+                for k, side in enumerate(interface.sides) if side.subdomain == name]
+
+    @property
+    def sweep(self):
+        """The groups of subdomains of one multiplicative Robin iteration, solved one after
+        the other, each from the state the groups before it left (robin.py): the bodies,
+        then the coating patches, which meet bodies only, so each group's solves stay
+        independent."""
+        bodies = tuple(name for name, sub in self.subdomains.items() if not sub.coating)
+        patches = tuple(name for name, sub in self.subdomains.items() if sub.coating)
+        return tuple(group for group in (bodies, patches) if group)
+
+    @property
+    def contacts(self):
+        return [i for i in self.interfaces if i.kind == "contact"]
+
+    @property
+    def bonds(self):
+        return [i for i in self.interfaces if i.kind == "bond"]
+
+
+# ---- elements along the face -----------------------------------------------------------
+
+# Elements along one interface, and layers across one 2D coating, at most: beyond, the
+# arrays alone would exhaust the memory before the size check (problem_size.py) can run.
+MAX_ELEMENTS = 200_000
+
+
+def _count(length, size):
+    return _bounded(max(1, round(length / size)))
+
+
+def _bounded(count, what="interface elements"):
+    if count > MAX_ELEMENTS:
+        raise ParameterError(f"mesh_level, element_size: the scene would need {count:.3g} "
+                             f"{what} on one face (at most {MAX_ELEMENTS}): coarsen the mesh, "
+                             "or thicken a 2D coating (its cells are at most twice as wide as "
+                             "high)", "mesh_level")
+    return count
+
+
+def element_nodes(s0, s1, count, split_at_zero=False):
+    """Ends of ``count(length)`` equal elements on [s0, s1]; with ``split_at_zero`` an
+    interval across 0 has a node there, its left half the mirror image of its right."""
+    if split_at_zero and s0 < 0 < s1:
+        left, right = count(-s0), count(s1)
+        return np.concatenate([-np.linspace(0.0, -s0, left + 1)[::-1][:-1],
+                               np.linspace(0.0, s1, right + 1)])
+    return np.linspace(s0, s1, count(s1 - s0) + 1)
+
+
+def simpson(nodes, stretch=1.0):
+    """The P2 nodes of the elements (ends, midpoints) and Simpson's weights L/6, 4L/6,
+    L/6 of their length, ``stretch`` times the length in s."""
+    size = np.diff(nodes)
+    s = np.empty(2 * len(size) + 1)
+    s[0::2] = nodes
+    s[1::2] = nodes[:-1] + 0.5 * size
+    length = size * stretch
+    weight = np.zeros_like(s)
+    weight[0:-1:2] += length / 6.0
+    weight[1::2] += 4.0 * length / 6.0
+    weight[2::2] += length / 6.0
+    return s, weight
+
+
+def chord_points(exact):
+    """A body's mesh points for the P2 nodes whose exact places are ``exact``: the ends
+    of the elements, and the midpoints of the straight edges between them."""
+    points = exact.copy()
+    points[1::2] = exact[0:-2:2] + 0.5 * (exact[2::2] - exact[0:-2:2])
+    return points
+
+
+# ---- the problem ------------------------------------------------------------------------
+
+def coating_layers(coating, level):
+    return _bounded(level * max(1, round(coating.thickness / COATING_LAYER_HEIGHT)),
+                    "layers of cells")
+
+
+def discretize(scene, settings):
+    """The subdomains and interfaces of a scene at the settings' mesh (every patch's
+    model decided: model_choice.choose_models turns "auto" into one)."""
+    undecided = [n for n, c in enumerate(scene.coatings, start=1) if c.model not in MODELS]
+    if undecided:
+        raise ValueError(f"coating{undecided[0]}: model {scene.coatings[undecided[0] - 1].model!r} "
+                         "must be decided before the scene is discretised")
+    face = base_face(scene.base)
+    level = settings.mesh_level
+    size = settings.element_size / level
+    mirror = scene.mirror_symmetric
+
+    def patch_count(coating):
+        if coating.model != "elastic":
+            return lambda length: _count(length, size)
+        layer = coating.thickness / coating_layers(coating, level)
+        return lambda length: max(_count(length, size),
+                                  _bounded(math.ceil(length / (MAX_ASPECT * layer))))
+
+    patches = []
+    for number, coating in enumerate(scene.coatings, start=1):
+        s0, s1 = face.s_of_x1(coating.start), face.s_of_x1(coating.end)
+        patches.append((number, coating, element_nodes(s0, s1, patch_count(coating), mirror)))
+    patches.sort(key=lambda item: item[2][0])
+
+    def partners_in(s_lo, s_hi):
+        """(s-nodes, offset, name, patch number or None) of every face the indenter may
+        touch in [s_lo, s_hi], along the face; the patches among them."""
+        partners, in_zone = [], set()
+        for number, coating, nodes in patches:
+            if nodes[-1] <= s_lo or nodes[0] >= s_hi:
+                continue
+            if nodes[0] < s_lo - 1e-12 or nodes[-1] > s_hi + 1e-12:
+                raise ParameterError(
+                    f"coating[{number}] [{coating.start!r}, {coating.end!r}] reaches beyond "
+                    "the part of the base the indenter's face covers: widen indenter.width or "
+                    "set contact_zone to leave the patch out", "indenter.width")
+            partners.append((nodes, coating.thickness, f"contact-coating{number}", number))
+            in_zone.add(number)
+        bare = _bare_stretches(s_lo, s_hi, [nodes for _, _, nodes in patches])
+        for number, (a, b) in enumerate(bare, start=1):
+            partners.append((element_nodes(a, b, lambda length: _count(length, size), mirror),
+                             0.0, f"contact-base{number}", None))
+        partners.sort(key=lambda item: item[0][0])
+        if not partners:
+            raise ParameterError("the contact zone is empty: the indenter's face, the base's "
+                                 "face and contact_zone do not overlap", "contact_zone")
+        return partners, in_zone
+
+    def lowest_over(partners):
+        """The indenter's lowest point: its face passes above every partner face."""
+        samples = [face.point(np.linspace(n[0], n[-1], 50 * len(n)), offset)
+                   for n, offset, _, _ in partners]
+        samples += [face.point(n, offset) for n, offset, _, _ in partners]
+        return lowest_point(scene.indenter, np.vstack(samples))
+
+    s_lo, s_hi = _contact_range(scene, face)
+    partners, in_zone = partners_in(s_lo, s_hi)
+    lowest = lowest_over(partners)
+    # on a curved base, the normals of the zone's far points may pass beside the
+    # indenter's face: the zone ends where they reach the face's end
+    clipped = _under_indenter(scene, face, IndenterFace(scene.indenter, lowest), s_lo, s_hi)
+    if clipped != (s_lo, s_hi):
+        partners, in_zone = partners_in(*clipped)
+        lowest = lowest_over(partners)
+    indenter_face = IndenterFace(scene.indenter, lowest)
+
+    contacts = []
+    for nodes, offset, name, number in partners:
+        s, weight = simpson(nodes, face.stretch(offset))
+        position = face.point(s, offset)
+        normal, tangent = face.normal(s), face.tangent(s)
+        gap, touching = indenter_face.pair(position, normal)
+        if np.any(gap < -1e-12 * (1.0 + np.abs(position[:, 1]))):
+            raise AssertionError("negative initial gap: the lowest point is wrong")
+        indenter_place = _indenter_place(touching, scene.indenter, lowest)
+        _check_under_indenter(scene, indenter_place)
+        partner = f"coating{number}" if number is not None else "base"
+        if number is not None and scene.coatings[number - 1].model in SHELL_MODELS:
+            coating = scene.coatings[number - 1]
+            spec_stretch = face.stretch(0.5 * coating.thickness)
+            partner_side = Side(partner, (s - nodes[0]) * spec_stretch, (  # the top face's w
+                _shell_coefficients(len(s), coating, 0.0, 1.0, 0.0, 0.5),))
+        else:
+            partner_side = Side(partner, chord_points(position), (normal.copy(),))
+        indenter_side = Side("indenter", indenter_place, (-normal,))
+        face_normal = indenter_face.normal(touching[:, 0])
+        angle = np.arccos(np.clip(-np.sum(face_normal * normal, axis=1), -1.0, 1.0))
+        contacts.append(Interface(name, "contact", s, position, normal, tangent, weight,
+                                  np.maximum(gap, 0.0), (indenter_side, partner_side), angle))
+
+    bonds, subdomains = [], {}
+    for number, coating, nodes in sorted(patches, key=lambda item: item[0]):
+        s, weight = simpson(nodes)
+        position = face.point(s)
+        normal, tangent = face.normal(s), face.tangent(s)
+        name = f"coating{number}"
+        on_axis = scene.symmetric and nodes[0] == 0.0
+        if coating.model in SHELL_MODELS:
+            stretch = face.stretch(0.5 * coating.thickness)
+            spec = ShellSpec((nodes - nodes[0]) * stretch, face.curvature / stretch,
+                             coating.thickness, coating.shear_factor,
+                             coating.model == "stretch_shell", on_axis, face,
+                             float(nodes[0]), stretch)
+            n = len(s)
+            coating_side = Side(name, (s - nodes[0]) * stretch, (   # the bottom face's v, w
+                _shell_coefficients(n, coating, 1.0, 0.0, -0.5 * coating.thickness, 0.0),
+                _shell_coefficients(n, coating, 0.0, 1.0, 0.0, -0.5)))
+            subdomains[name] = Subdomain(name, "shell", coating.E, coating.nu, spec,
+                                         coating=True)
+        else:
+            plan = CoatingPlan(face, nodes, coating.thickness, coating_layers(coating, level),
+                               "Contact" if number in in_zone else "Free",
+                               "Symmetry" if on_axis else "Free")
+            coating_side = Side(name, chord_points(position), (tangent.copy(), normal.copy()))
+            subdomains[name] = Subdomain(name, "body", coating.E, coating.nu, plan,
+                                         coating=True)
+        base_side = Side("base", chord_points(position), (tangent.copy(), normal.copy()))
+        bonds.append(Interface(f"bond-{name}", "bond", s, position, normal, tangent, weight,
+                               np.zeros_like(s), (coating_side, base_side)))
+
+    interfaces = tuple(contacts + bonds)
+    # the finest element on any face, as length / elements (the mesh's size field)
+    face_size = min(float(i.s[-1] - i.s[0]) / ((i.size - 1) // 2) for i in interfaces)
+    ordered = {"indenter": Subdomain(
+        "indenter", "body", scene.indenter.E, scene.indenter.nu,
+        indenter_plan(scene, settings, indenter_face, contacts, face_size), stamp=True)}
+    ordered.update((name, subdomains[name]) for name in sorted(
+        subdomains, key=lambda n: int(n[len("coating"):])))
+    ordered["base"] = Subdomain("base", "body", scene.base.E, scene.base.nu,
+                                base_plan(scene, settings, face, contacts, bonds, face_size))
+    return Problem(scene, settings, ordered, interfaces, lowest,
+                   settings.theta / scene.modulus, settings.robin_parameter * scene.modulus)
+
+
+def _shell_coefficients(n, coating, c_v, c_w, c_gamma, face):
+    """Trace coefficients of a shell's face at n points: cV v + cW w + cG gamma, and with
+    thickness stretch + cE epsilon, cE = face h2 c_w (face = +1/2 top, -1/2 bottom): the
+    face xi3 = face h2 moves along the normal by w + xi3 epsilon."""
+    row = [c_v, c_w, c_gamma]
+    if coating.model == "stretch_shell":
+        row.append(face * coating.thickness * c_w)
+    return np.tile(row, (n, 1)).astype(float)
+
+
+def _contact_range(scene, face):
+    """The arc-length range of the base's face where contact may happen: under the
+    indenter's face, on the base's face (a roller's upper half), inside contact_zone."""
+    indenter, base = scene.indenter, scene.base
+    lo = 0.0 if scene.symmetric else max(indenter.centre - indenter.width, -base.top)
+    hi = min(indenter.width if scene.symmetric else indenter.centre + indenter.width, base.top)
+    if scene.contact_zone is not None:
+        lo, hi = max(lo, scene.contact_zone[0]), min(hi, scene.contact_zone[1])
+    return face.s_of_x1(lo), face.s_of_x1(hi)
+
+
+def _under_indenter(scene, face, indenter_face, s_lo, s_hi):
+    """[s_lo, s_hi] shrunk so that the normal of every point in it (of the base's face,
+    and of the coatings' tops on it) meets the indenter's face within its ends."""
+    indenter = scene.indenter
+    lo = 0.0 if scene.symmetric else indenter.centre - indenter.width
+    hi = indenter.width if scene.symmetric else indenter.centre + indenter.width
+    offsets = [0.0] + [c.thickness for c in scene.coatings]
+
+    def reach(s):
+        points = np.vstack([face.point(np.array([s]), t) for t in offsets])
+        normals = np.repeat(face.normal(np.array([s])), len(offsets), axis=0)
+        _, touching = indenter_face.pair(points, normals)
+        return touching[:, 0].min(), touching[:, 0].max()
+
+    def inside(s):
+        low, high = reach(s)
+        return low >= lo - 1e-12 and high <= hi + 1e-12
+
+    ends = []
+    for end, other in ((s_lo, s_hi), (s_hi, s_lo)):
+        if inside(end):
+            ends.append(end)
+            continue
+        good, bad = other, end            # bisect between a point under it and the end
+        for _ in range(60):
+            middle = 0.5 * (good + bad)
+            good, bad = (middle, bad) if inside(middle) else (good, middle)
+        ends.append(good)
+    return tuple(ends)
+
+
+def _bare_stretches(s_lo, s_hi, patch_nodes, shortest=1e-9):
+    """The parts of [s_lo, s_hi] no patch covers."""
+    stretches, start = [], s_lo
+    for nodes in sorted(patch_nodes, key=lambda n: n[0]):
+        a, b = nodes[0], nodes[-1]
+        if a - start > shortest and a > s_lo and start < s_hi:
+            stretches.append((start, min(a, s_hi)))
+        start = max(start, b)
+    if s_hi - start > shortest:
+        stretches.append((start, s_hi))
+    return stretches
+
+
+def _indenter_place(touching, indenter, lowest):
+    """The indenter's mesh points for the contact points: on its face (``shaped``) or on
+    the flat line of its lowest point (``flat``), chord midpoints between the ends."""
+    if indenter.face_mesh == "flat":
+        touching = np.column_stack([touching[:, 0], np.full(len(touching), lowest)])
+    return chord_points(touching)
+
+
+def _check_under_indenter(scene, place):
+    indenter = scene.indenter
+    lo = 0.0 if scene.symmetric else indenter.centre - indenter.width
+    hi = indenter.width if scene.symmetric else indenter.centre + indenter.width
+    x = place[:, 0]
+    if np.any(x < lo - 1e-9) or np.any(x > hi + 1e-9):
+        raise ParameterError(
+            f"indenter.width = {indenter.width!r}: the indenter's face (x1 in [{lo:g}, {hi:g}]) "
+            f"does not reach every point of the contact zone (x1 in [{x.min():.4g}, "
+            f"{x.max():.4g}]): widen it or narrow contact_zone", "indenter.width")

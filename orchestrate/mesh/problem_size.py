@@ -1,0 +1,97 @@
+"""The size of a problem, estimated before any mesh is made, against the machine.
+
+A body meshed by gmsh has its face's element size s0 near its interfaces, growing by g
+per unit distance up to s_max: about L / (c g) (1/s0 - 1/s_max) triangles along a fine
+face of length L and A / (c s_max^2) over the rest of its area A, with c = TRIANGLE_AREA
+(the area of a triangle of size s is about c s^2; the paper's bodies: 1380 triangles).
+A P2 vector field has about 4 unknowns per triangle. Memory: MEMORY_PER_DOF per unknown
+(measured: 430 MB for an 86 000-dof body at mesh level 4, with MUMPS's factors) and
+MEMORY_PER_WORKER per FreeFEM process. A run is refused before any work when its
+estimate exceeds Settings.memory_limit (default: 3/4 of the memory free now).
+"""
+
+import math
+
+import numpy as np
+
+from orchestrate.mesh.body_plans import GROWTH, BodyPlan
+from orchestrate.mesh.discretization import CoatingPlan
+from orchestrate.errors import ParameterError
+
+TRIANGLE_AREA = 0.45
+MEMORY_PER_DOF = 6e3        # bytes
+MEMORY_PER_WORKER = 100e6   # bytes
+GIB = 2.0 ** 30
+
+
+def body_triangles(plan):
+    """Estimated triangles of a gmsh body."""
+    level = plan.mesh_level
+    s0, s_max, growth = plan.face_size, plan.max_size / level, GROWTH / level
+    fine = 0.0
+    for piece in plan.face:
+        length = float(np.sum(np.linalg.norm(np.diff(piece.points, axis=0), axis=1)))
+        if piece.curve == "arc":
+            radius = math.hypot(*piece.points[0])
+            start, end = (math.atan2(p[0], p[1]) for p in (piece.points[0], piece.points[-1]))
+            length = radius * ((end - start) % (2 * math.pi))
+        fine += length if piece.label != "Free" else min(length, 2 * plan.near)
+    if plan.shape == "roller":
+        area = math.pi * (plan.radius ** 2 - plan.bore ** 2) * (0.5 if plan.half or plan.mirror else 1)
+    else:
+        face_height = plan.lowest if plan.shape == "indenter" else plan.face[0].points[0][1]
+        area = (plan.right - plan.left) * abs(plan.far - face_height)
+    triangles = (fine / (TRIANGLE_AREA * growth) * max(0.0, 1 / s0 - 1 / s_max)
+                 + area / (TRIANGLE_AREA * s_max ** 2))
+    return triangles * (2 if plan.mirror else 1)
+
+
+def estimated_dofs(problem):
+    """{subdomain: estimated unknowns}."""
+    dofs = {}
+    for name, subdomain in problem.subdomains.items():
+        plan = subdomain.plan
+        if isinstance(plan, BodyPlan):
+            dofs[name] = 4 * body_triangles(plan)
+        elif isinstance(plan, CoatingPlan):
+            dofs[name] = 2 * (2 * len(plan.nodes) - 1) * (2 * plan.layers + 1)
+        else:                            # P4 fields v, w, gamma (and P2 epsilon)
+            dofs[name] = 3 * (4 * (len(plan.nodes) - 1) + 1) + (
+                2 * (len(plan.nodes) - 1) + 1 if plan.thickness_stretch else 0)
+    return dofs
+
+
+def available_memory():
+    """Bytes of memory free now (MemAvailable), or None where it cannot be read."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return None
+
+
+def check_size(problem):
+    """Refuse a problem whose estimated memory exceeds the limit, before any work."""
+    dofs = estimated_dofs(problem)
+    memory = sum(MEMORY_PER_DOF * n + MEMORY_PER_WORKER for n in dofs.values())
+    limit = problem.settings.memory_limit
+    if limit is not None:
+        limit_bytes, what = limit * GIB, f"memory_limit = {limit:g} GiB"
+    else:
+        free = available_memory()
+        if free is None:
+            return dofs
+        limit_bytes, what = 0.75 * free, f"3/4 of the {free / GIB:.1f} GiB free (memory_limit)"
+    if memory > limit_bytes:
+        largest = max(dofs, key=dofs.get)
+        raise ParameterError(
+            f"mesh_level = {problem.settings.mesh_level}, element_size = "
+            f"{problem.settings.element_size:g}: the problem is estimated at "
+            f"{sum(dofs.values()):.3g} unknowns ({largest}: {dofs[largest]:.3g}) and "
+            f"{memory / GIB:.1f} GiB of memory, above {what}: coarsen the mesh "
+            "(mesh_level, element_size), thicken a 2D coating, or raise memory_limit",
+            "mesh_level")
+    return dofs

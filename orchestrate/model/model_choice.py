@@ -1,0 +1,238 @@
+"""model = "auto": the cheapest coating model whose estimated error is within tolerance.
+
+The estimate is a priori: from quantities of the scene, before any mesh, calibrated on
+measured errors (studies/adequacy.py, ``--fit``) and checked on scenes it never saw
+(docs/findings.md, "Choosing the coating model").
+
+Two quantities are estimated, each as a relative error against the 2D coating model
+(exact for the coating, up to its mesh): the peak contact stress ("contact") and the peak
+normal stress on the bond under the contact ("bond"); a model passes when both are within
+the tolerance. They are governed by
+
+    x = h2 / a        the coating's thickness over the contact half-width a, estimated by
+                      plane-strain Hertz from the load (a descent is turned into a force
+                      by the compliance of the two bodies of finite depth, Johnson,
+                      Contact Mechanics (1985) eq. 5.43; the coatings left out)
+    c = E* / M2       the bodies' contact modulus over the coating's constrained modulus
+                      M2 = E2 (1 - nu2) / ((1 + nu2)(1 - 2 nu2)), the stiffness of a
+                      bonded layer pressed through its thickness
+    g = E* / G2       ... over the coating's shear modulus, which sets how a thick soft
+                      layer squeezes out sideways under a contact
+    q = E* k / E3     the Poisson swelling of a coating bonded on a base surface that the
+                      contact compresses laterally, k = nu2 (1 + nu3)(1 - 2 nu3) / (1 - nu2)
+
+The Timoshenko shell ("shell") has no through-thickness compliance: it is too stiff by
+about the layer's compression, h2 (1/M2 - k/E3), against the contact's compliance a/E*
+(the k term: a coating bonded on a base whose surface the contact squeezes sideways
+swells in thickness, so that for a stiff coating the rigid fibre is too soft); thicker
+layers add terms in x^2. For both quantities, with constants of their own:
+
+    shell:          e = x (K1 c + K2 q) + x^2 (K3 + K4 c)
+
+The stretch shell carries that compression. What remains is the layer's sideways
+squeeze and the variation of the compression through a thick layer (its displacement is
+linear through the thickness), of order x^2; for a stiff thick coating its contact
+stress is too soft by a few tenths of a per cent, a plateau whose cause is not isolated:
+
+    stretch_shell:  contact |e| = max(S x^2 g^s, min(T x^2, P)),   bond |e| = B x^2
+
+The 2D coating model ("elastic") is the reference: its estimate is 0 (its error is the
+mesh's, 0.03 % on the paper's mesh, docs/findings.md). |e| is the estimate.
+
+Where the estimate was not calibrated, or cannot hold, the 1D models are "not
+estimated" and auto takes the 2D model: a coating Poisson ratio outside NU2_CALIBRATED
+(towards 0.5 the shell's error changes sign and no longer follows x: measured -0.6 to
+-2.4 % at 0.45-0.49), and a patch end within the contact, where the contact presses on
+a step the forms know nothing of (measured 1.6-8.3 % for the shell against 0.003-2.2 %
+from its form).
+
+Cost: the estimated number of unknowns of the whole problem (problem_size.py), counted
+before any mesh. Costs within COST_TIE of the cheapest count as the same, and then the
+more faithful model wins: on the paper's mesh the 2D coating needs no more unknowns than
+a shell until it must refine (thinner than about b/32), and a run's time follows its
+unknowns (docs/findings.md, "Speed and accuracy").
+"""
+
+import math
+
+from orchestrate.mesh.discretization import discretize
+from orchestrate.mesh.problem_size import estimated_dofs
+from orchestrate.model.scene import MODELS
+
+AUTO = "auto"
+FIDELITY = ("shell", "stretch_shell", "elastic")   # least to most faithful
+COST_TIE = 1.1
+
+# Fitted on the calibration set (results/adequacy/calibration.csv) by
+# ``python -m studies.adequacy --fit``
+SHELL_CONTACT = (0.2606, -0.2336, 0.03137, 0.1726)      # K1, K2, K3, K4
+SHELL_BOND = (0.2893, -0.2567, 0.1242, 0.2992)
+STRETCH_SOFT_COATING = (0.009273, 0.8405)               # S, s
+STRETCH_STIFF_COATING = (0.01876, 0.004231)             # T, P
+STRETCH_BOND = 0.03772                                  # B
+
+NU2_CALIBRATED = (0.1, 0.4)    # the coating Poisson ratios the estimate holds for
+END_MARGIN = 0.5               # a patch end this many thicknesses from the contact is in it
+BISECTIONS = 64                # halvings of [-60, 60] in log F: below a double's resolution
+
+
+# ---- the contact half-width ------------------------------------------------------------
+
+def contact_modulus(scene):
+    """E* of the indenter and the base (plane strain)."""
+    ind, base = scene.indenter, scene.base
+    return 1.0 / ((1 - ind.nu ** 2) / ind.E + (1 - base.nu ** 2) / base.E)
+
+
+def relative_radius(scene):
+    """R of the contact, 1/R = 1/R_indenter + 1/R_base (a flat face: infinite)."""
+    curvature = (0.0 if scene.indenter.flat else 1.0 / scene.indenter.radius)
+    if scene.base.shape == "roller":
+        curvature += 1.0 / scene.base.radius
+    return math.inf if curvature == 0 else 1.0 / curvature
+
+
+def _face_half_width(scene):
+    """Half the width of the indenter's face over the base: a flat punch's contact."""
+    if scene.symmetric:
+        return min(scene.indenter.width, scene.base.top)
+    return scene.indenter.width
+
+
+def _hertz_half_width(force, radius, modulus):
+    return math.sqrt(4.0 * force * radius / (math.pi * modulus))
+
+
+def _body_depths(scene):
+    """(E, nu, depth) of each body: how far below its face it is held."""
+    ind, base = scene.indenter, scene.base
+    depth = base.height if base.shape == "block" else base.radius - base.shaft_radius
+    return ((ind.E, ind.nu, ind.height), (base.E, base.nu, depth))
+
+
+def descent_of_force(scene, force):
+    """The stamp's descent that presses with ``force`` (Johnson eq. 5.43 per body: the
+    approach of the contact's centre to a point held at depth d below it,
+    2 F (1 - nu^2)/(pi E) (ln(2 d / a) - nu / (2 (1 - nu))); the logarithm kept at
+    least 1, so that the descent grows with the force when a nears d)."""
+    a = _hertz_half_width(force, relative_radius(scene), contact_modulus(scene))
+    return sum(2.0 * force * (1 - nu ** 2) / (math.pi * E)
+               * (max(math.log(2.0 * d / a), 1.0) - nu / (2.0 * (1.0 - nu)))
+               for E, nu, d in _body_depths(scene))
+
+
+def contact_half_width(scene):
+    """The a priori contact half-width a (0 without load)."""
+    face = _face_half_width(scene)
+    radius = relative_radius(scene)
+    load = scene.load
+    if (load.force or load.displacement or 0.0) == 0.0:
+        return 0.0
+    if math.isinf(radius):
+        return face
+    force = load.force
+    if force is None:                     # bisection on log F: descent grows with F
+        low, high = -60.0, 60.0
+        for _ in range(BISECTIONS):
+            middle = 0.5 * (low + high)
+            if descent_of_force(scene, math.exp(middle)) < load.displacement:
+                low = middle
+            else:
+                high = middle
+        force = math.exp(0.5 * (low + high))
+    return min(_hertz_half_width(force, radius, contact_modulus(scene)), face)
+
+
+# ---- the estimate ----------------------------------------------------------------------
+
+def constrained_modulus(E, nu):
+    return E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+
+
+def scene_ratios(scene, coating, a=None):
+    """(x, c, q, g) of a patch (the module's docstring); a: the scene's
+    contact_half_width, if known."""
+    a = contact_half_width(scene) if a is None else a
+    modulus = contact_modulus(scene)
+    base = scene.base
+    x = math.inf if a == 0 else coating.thickness / a
+    c = modulus / constrained_modulus(coating.E, coating.nu)
+    q = modulus * coating.nu * (1 + base.nu) * (1 - 2 * base.nu) / ((1 - coating.nu) * base.E)
+    g = modulus * 2 * (1 + coating.nu) / coating.E
+    return x, c, q, g
+
+
+def not_estimated(scene, coating, a=None):
+    """Why the 1D models' errors are not estimated for this patch (None: they are)."""
+    low, high = NU2_CALIBRATED
+    if not low <= coating.nu <= high:
+        return f"coating Poisson ratio {coating.nu:g} outside the calibrated [{low:g}, {high:g}]"
+    a = contact_half_width(scene) if a is None else a
+    for end in scene.patch_ends(coating):
+        if a > 0 and abs(end - scene.indenter.centre) <= a + END_MARGIN * coating.thickness:
+            return f"patch end x1 = {end:g} within the contact (estimated half-width {a:.3g})"
+    return None
+
+
+def estimated_errors(scene, coating, a=None):
+    """{model: {"contact": |e|, "bond": |e|}} of a patch (the module's docstring); a 1D
+    model's is None where it is not estimated (not_estimated)."""
+    a = contact_half_width(scene) if a is None else a
+    x, c, q, g = scene_ratios(scene, coating, a)
+    exact = {"contact": 0.0, "bond": 0.0}
+    if math.isinf(x):                         # no load, no contact: every model is exact
+        return {model: dict(exact) for model in MODELS}
+    if not_estimated(scene, coating, a):
+        return {"shell": None, "stretch_shell": None, "elastic": exact}
+
+    def shell(k1, k2, k3, k4):
+        return abs(x * (k1 * c + k2 * q) + x ** 2 * (k3 + k4 * c))
+
+    (S, s), (T, P) = STRETCH_SOFT_COATING, STRETCH_STIFF_COATING
+    return {"shell": {"contact": shell(*SHELL_CONTACT), "bond": shell(*SHELL_BOND)},
+            "stretch_shell": {"contact": max(S * x ** 2 * g ** s, min(T * x ** 2, P)),
+                              "bond": STRETCH_BOND * x ** 2},
+            "elastic": exact}
+
+
+def worst_error(errors):
+    """The larger of a model's estimated errors (infinite: not estimated)."""
+    return math.inf if errors is None else max(errors.values())
+
+
+# ---- the choice ------------------------------------------------------------------------
+
+def estimated_unknowns(scene, settings):
+    return sum(estimated_dofs(discretize(scene, settings)).values())
+
+
+def choose_models(scene, settings):
+    """(the scene with every "auto" patch's model chosen, the choice's report or None)."""
+    auto = [n for n, c in enumerate(scene.coatings) if c.model == AUTO]
+    if not auto:
+        return scene, None
+    tolerance = settings.model_tolerance
+    a = contact_half_width(scene)
+    # while a patch is decided, the other undecided ones are shells (the cheapest)
+    models = [("shell" if c.model == AUTO else c.model) for c in scene.coatings]
+    patches = []
+    for n in auto:
+        coating = scene.coatings[n]
+        errors = estimated_errors(scene, coating, a)
+        unknowns = {}
+        for model in FIDELITY:
+            trial = list(models)
+            trial[n] = model
+            unknowns[model] = round(estimated_unknowns(scene.with_models(trial), settings))
+        passing = [m for m in FIDELITY if worst_error(errors[m]) <= tolerance]
+        cheapest = min(unknowns[m] for m in passing)           # elastic always passes
+        chosen = [m for m in passing if unknowns[m] <= COST_TIE * cheapest][-1]
+        models[n] = chosen
+        patches.append({"patch": n + 1, "model": chosen,
+                        "estimated_error": worst_error(errors[chosen]),
+                        "not_estimated": not_estimated(scene, coating, a),
+                        "h2_over_a": coating.thickness / a if a else None,
+                        "estimated_errors": errors, "estimated_unknowns": unknowns})
+    report = {"tolerance": tolerance, "contact_half_width_estimate": a,
+              "patches": patches}
+    return scene.with_models(models), report

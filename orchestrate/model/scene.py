@@ -1,0 +1,579 @@
+"""The scene (bodies, coatings, load) and the solver settings, as validated data.
+
+A scene is an indenter pressed on a base that carries any number of coating patches:
+
+    Indenter  the upper body: a block whose lower face has the profile of a circle or a
+              parabola of radius R (flat without a radius), pushed down at its top by a
+              rigid stamp
+    Base      the lower body: a block with a flat top, clamped at its bottom, or a roller
+              (a disk on a rigid shaft, clamped at its bore)
+    Coating   a patch on the base's top face, between two abscissae x1, modelled as a
+              Timoshenko-type shell or as a 2D elastic body
+    Load      the stamp's descent, or the total force per unit width
+
+Lengths are in units of b and moduli in units of E (METHOD.md); the scene files of
+orchestrate/scenes/ write them out (orchestrate/model/scene_file.py reads them). Every object
+is checked once, on creation; an error names the key (``coating[2].thickness``,
+patches counted from 1) and the allowed range. Scene and settings are written next to
+every result, so that any result can be reproduced.
+"""
+
+from dataclasses import asdict, dataclass, fields, replace
+import math
+from typing import Optional
+
+from orchestrate.errors import ParameterError
+from orchestrate.model.units import Units
+
+MODELS = ("shell", "stretch_shell", "elastic")
+SHELL_MODELS = ("shell", "stretch_shell")   # the coating on its mid-line
+MODEL_CHOICES = MODELS + ("auto",)            # auto: chosen per patch (model_choice.py)
+THETA_RANGE = (1e-6, 1.0)      # the penalty, b/E
+ROBIN_RANGE = (1e-3, 1e3)      # the Robin parameter, E/b
+MODULUS_RATIO = 1e6            # the largest over the smallest modulus of a scene
+MODULUS_RANGE = (1e-20, 1e20)  # any unit of stress; beyond, squares and penalties overflow
+LOOSEST_EPS_U = 1e-3           # the paper's; within it the stopping test holds (robin.py)
+SMALLEST_LOAD = 1e-12          # a descent in b, a force in E b: below, results underflow
+# Every length of a scene, in b (the solver's unit of length, units.b): within these, a
+# scene can be meshed and its squares neither overflow nor lose their digits. A radius
+# beyond its bound is a flat face (leave it out); loads beyond theirs are strains of
+# millions.
+LENGTH_RANGE = (1e-6, 1e6)     # b: sizes, positions (in absolute value), thicknesses
+RADIUS_LIMIT = 1e12            # b
+LARGEST_LOAD = 1e6             # a descent in b, a force in E b
+SHEAR_FACTOR_RANGE = (1e-3, 1e3)   # k' of the shell
+PROFILES = ("circle", "parabola")
+FACE_MESHES = ("shaped", "flat")
+SHAPES = ("block", "roller")
+METHODS = ("active-set", "paper")
+INNER_SOLVES = ("auto", "direct", "iterate", "two-level")   # a contact set's fixed point
+WORKERS = ("persistent", "fresh")
+DEFAULT_ROBIN = 2.0    # E/b
+# With a coarse correction (two levels, orchestrate/ddm/coarse.py) the fine loop is left with
+# the interface modes the coarse mesh cannot see, wavelengths below about its element
+# (Settings.element_size), and a Robin parameter of their stiffness, E over that length,
+# damps them fastest. Measured on five paper scenes (both models, E2 = E/5 ... 5E),
+# iterations summed at mesh level 2 for gamma = 2, 8, 16, 32, 64 E/b: 283, 194, 156, 132,
+# 126; at level 3 for 32, 48, 64, 96: 151, 141, 133, 139.
+TWO_LEVEL_ROBIN_PER_LENGTH = 4.0   # E: gamma = 4 E / element_size = 64 E/b at b/16
+PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
+MESH_LEVEL_LIMIT = 16   # the paper's mesh refined 16 times: about 7 million unknowns
+ELEMENT_SIZE_RANGE = (1e-4, None)   # b: the interface elements at mesh level 1
+# The accelerated loop's default penalty per unit length of an interface element (E):
+# theta = 2.5e-4 b/E on the paper's mesh (elements b/16), shrinking with the elements, so
+# that the penalty's error (0.013 % of the peak contact stress there, 0.0044 % at mesh
+# level 3) stays below the mesh's (results/penalty.csv, studies/penalty.py); a
+# smaller theta costs that loop no iterations (docs/method.md, "Penalty").
+THETA_PER_LENGTH = 4e-3
+
+
+def _require(condition, key, message):
+    if not condition:
+        raise ParameterError(message, key)
+
+
+def _finite(value):
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _positive(key, value):
+    _require(_finite(value) and value > 0, key, f"{key} = {value!r} must be a positive number")
+
+
+def _poisson(key, value):
+    _require(_finite(value) and -1.0 < value < 0.5, key,
+             f"{key} = {value!r} must lie in (-1, 0.5): outside it the body has no "
+             "positive elastic energy")
+
+
+def _choice(key, value, choices):
+    _require(value in choices, key, f"{key} = {value!r} must be one of {choices}")
+
+
+def _positive_int(key, value):
+    _require(isinstance(value, int) and not isinstance(value, bool) and value >= 1, key,
+             f"{key} = {value!r} must be a positive integer")
+
+
+@dataclass(frozen=True)
+class Indenter:
+    """The upper body: x1 in [centre - width, centre + width] (a half model: [0, width]),
+    its lower face touching the scene at its lowest point, its top ``height`` above it."""
+
+    radius: float = math.inf       # R of the lower face; infinite: a flat face
+    profile: str = "circle"        # gap above the lowest point: R - sqrt(R^2 - x^2), or x^2/(2R)
+    face_mesh: str = "shaped"      # "shaped": meshed as it is; "flat": meshed flat, the
+                                   # profile only in the initial gap (the paper's Omega1)
+    width: float = 4.0             # half width (the whole width of a half model)
+    height: float = 8.0
+    centre: float = 0.0            # x1 of the lowest point (full models)
+    E: float = 1.0
+    nu: float = 0.3
+
+    def check(self, prefix):
+        _require(isinstance(self.radius, (int, float)) and not isinstance(self.radius, bool)
+                 and self.radius > 0 and not math.isnan(self.radius), prefix + "radius",
+                 f"{prefix}radius = {self.radius!r} must be a positive number (or absent: "
+                 "a flat face)")
+        _choice(prefix + "profile", self.profile, PROFILES)
+        _choice(prefix + "face_mesh", self.face_mesh, FACE_MESHES)
+        for name in ("width", "height", "E"):
+            _positive(prefix + name, getattr(self, name))
+        _poisson(prefix + "nu", self.nu)
+        _require(_finite(self.centre), prefix + "centre",
+                 f"{prefix}centre = {self.centre!r} must be a number")
+        if self.profile == "circle" and math.isfinite(self.radius):
+            _require(self.radius > self.width, prefix + "radius",
+                     f"{prefix}radius = {self.radius!r} must exceed {prefix}width = "
+                     f"{self.width!r}: a circular face cannot be wider than its circle")
+
+    @property
+    def flat(self):
+        return math.isinf(self.radius)
+
+    def sag(self, x):
+        """Height of the face above its lowest point, at a distance x from it."""
+        if self.flat:
+            return 0.0 * x
+        if self.profile == "parabola":
+            return x ** 2 / (2.0 * self.radius)
+        # R - sqrt(R^2 - x^2) without its cancellation (a large radius lost every digit)
+        return x ** 2 / (self.radius + (self.radius ** 2 - x ** 2) ** 0.5)
+
+    def slope(self, x):
+        """d sag / dx."""
+        if self.flat:
+            return 0.0 * x
+        if self.profile == "parabola":
+            return x / self.radius
+        return x / (self.radius ** 2 - x ** 2) ** 0.5
+
+
+@dataclass(frozen=True)
+class Base:
+    """The lower body: a block [-width, width] x [0, height] (a half model: [0, width])
+    clamped at its bottom, or a roller: a disk of ``radius`` about the origin on a rigid
+    shaft of radius ``bore`` (default radius/2), clamped there."""
+
+    shape: str = "block"
+    width: float = 4.0             # block: half width (the whole width of a half model)
+    height: float = 8.0            # block
+    radius: Optional[float] = None  # roller
+    bore: Optional[float] = None    # roller
+    E: float = 1.0
+    nu: float = 0.3
+
+    def check(self, prefix):
+        _choice(prefix + "shape", self.shape, SHAPES)
+        _positive(prefix + "E", self.E)
+        _poisson(prefix + "nu", self.nu)
+        if self.shape == "block":
+            _positive(prefix + "width", self.width)
+            _positive(prefix + "height", self.height)
+            for name in ("radius", "bore"):
+                _require(getattr(self, name) is None, prefix + name,
+                         f"{prefix}{name} = {getattr(self, name)!r} is for a roller; a "
+                         "block has width and height")
+        else:
+            _require(self.radius is not None, prefix + "radius",
+                     f"{prefix}radius is missing: a roller needs its radius")
+            _positive(prefix + "radius", self.radius)
+            if self.bore is not None:
+                _positive(prefix + "bore", self.bore)
+                _require(self.bore < 0.9 * self.radius, prefix + "bore",
+                         f"{prefix}bore = {self.bore!r} must lie in (0, 0.9 {prefix}radius = "
+                         f"{0.9 * self.radius:g})")
+
+    @property
+    def shaft_radius(self):
+        return self.bore if self.bore is not None else 0.5 * self.radius
+
+    @property
+    def top(self):
+        """x1 of the top face's ends on the side x1 > 0."""
+        return self.width if self.shape == "block" else self.radius
+
+
+@dataclass(frozen=True)
+class Coating:
+    """A patch on the base's top face between the abscissae ``start`` and ``end`` (on a
+    roller: the x1 of its ends on the roller's surface)."""
+
+    start: float = 0.0
+    end: float = 2.0
+    thickness: float = 0.125
+    E: float = 1.0
+    nu: float = 0.3
+    model: str = "shell"           # "shell" (Timoshenko-type, the paper's), "stretch_shell"
+                                   # (the same with thickness stretch), "elastic" (2D) or
+                                   # "auto" (chosen per scene: orchestrate/model/model_choice.py)
+    shear_factor: float = 5.0 / 6.0  # k' of the shell
+
+    def check(self, prefix):
+        for name in ("start", "end"):
+            _require(_finite(getattr(self, name)), prefix + name,
+                     f"{prefix}{name} = {getattr(self, name)!r} must be a number")
+        _require(self.end > self.start, prefix + "end",
+                 f"{prefix}end = {self.end!r} must exceed {prefix}start = {self.start!r}")
+        for name in ("thickness", "E", "shear_factor"):
+            _positive(prefix + name, getattr(self, name))
+        low, high = SHEAR_FACTOR_RANGE
+        _require(low <= self.shear_factor <= high, prefix + "shear_factor",
+                 f"{prefix}shear_factor = {self.shear_factor!r} must lie in [{low:g}, "
+                 f"{high:g}] (Timoshenko's k', 5/6 for a rectangle): beyond, the shell's "
+                 "shear stiffness leaves its matrix ill-conditioned")
+        _poisson(prefix + "nu", self.nu)
+        _choice(prefix + "model", self.model, MODEL_CHOICES)
+
+
+@dataclass(frozen=True)
+class Load:
+    """The stamp's descent from first touch, or the total force per unit width on the
+    whole body (both halves of a half model); exactly one of them."""
+
+    displacement: Optional[float] = None
+    force: Optional[float] = None
+
+    def check(self, prefix):
+        given = [name for name in ("displacement", "force") if getattr(self, name) is not None]
+        _require(len(given) == 1, prefix + "displacement",
+                 f"{prefix.rstrip('.')} must give exactly one of displacement or force "
+                 f"(given: {given or 'none'})")
+        _require(_finite(getattr(self, given[0])) and getattr(self, given[0]) >= 0,
+                 prefix + given[0],
+                 f"{prefix}{given[0]} = {getattr(self, given[0])!r} must be a non-negative number")
+
+    @property
+    def kind(self):
+        return "force" if self.force is not None else "displacement"
+
+
+@dataclass(frozen=True)
+class Scene:
+    """The indenter, the base, its coating patches (any number, none overlapping) and
+    the load. ``symmetric``: a half model, x1 >= 0, with symmetry at x1 = 0.
+    ``contact_zone``: the x1 range where the indenter may touch the coatings or the
+    bare base (default: wherever its face is over the base); a run whose contact
+    reaches an end of it that is not the end of a face fails."""
+
+    indenter: Indenter
+    base: Base
+    load: Load
+    coatings: tuple = ()
+    symmetric: bool = True
+    contact_zone: Optional[tuple] = None
+    units: Units = Units()         # the file's units (orchestrate/model/units.py); default b, E
+
+    def __post_init__(self):
+        _require(isinstance(self.units, Units), "units",
+                 f"units = {self.units!r} must be orchestrate.units.Units")
+        _require(isinstance(self.coatings, (tuple, list)), "coating",
+                 f"coating = {self.coatings!r} must be a list of patches ([[coating]] tables)")
+        object.__setattr__(self, "coatings", tuple(self.coatings))
+        if self.contact_zone is not None:
+            _require(isinstance(self.contact_zone, (tuple, list)), "contact_zone",
+                     f"contact_zone = {self.contact_zone!r} must be [x1_start, x1_end]")
+            object.__setattr__(self, "contact_zone", tuple(self.contact_zone))
+        _require(isinstance(self.symmetric, bool), "symmetric",
+                 f"symmetric = {self.symmetric!r} must be true or false")
+        self.indenter.check("indenter.")
+        self.base.check("base.")
+        self.load.check("load.")
+        for number, coating in enumerate(self.coatings, start=1):
+            coating.check(f"coating[{number}].")
+        self._check_magnitudes()
+        self._check_layout()
+
+    def _lengths(self):
+        """(key, value) of every length of the scene, in its units."""
+        yield from ((f"indenter.{name}", getattr(self.indenter, name))
+                    for name in ("radius", "width", "height", "centre"))
+        yield from ((f"base.{name}", getattr(self.base, name))
+                    for name in ("width", "height", "radius", "bore"))
+        for number, coating in enumerate(self.coatings, start=1):
+            yield from ((f"coating[{number}].{name}", getattr(coating, name))
+                        for name in ("start", "end", "thickness"))
+        yield from (("contact_zone", z) for z in self.contact_zone or ())
+
+    def _check_magnitudes(self):
+        """Every length within LENGTH_RANGE b (a radius within RADIUS_LIMIT b), the load
+        within LARGEST_LOAD: checked before any square of them is taken."""
+        b, unit = self.units.b, self.units.length
+        low, high = LENGTH_RANGE
+        of_b = "" if unit == "b" else f" (b = {b:g} {unit}, units.b)"
+
+        def given(key, value, size):
+            return f"{key} = {value:g} {unit}" + ("" if unit == "b" else f" is {size:.3g} b")
+        for key, value in self._lengths():
+            if value is None or value == 0 or (key == "indenter.radius" and math.isinf(value)):
+                continue
+            _require(_finite(value), key, f"{key} = {value!r} must be a finite number")
+            size = abs(value) / b
+            limit = RADIUS_LIMIT if key.endswith("radius") else high
+            _require(size <= limit, key,
+                     f"{given(key, value, size)}: at most {limit:g} b{of_b}"
+                     + (": a larger radius is a flat face (leave it out)"
+                        if key == "indenter.radius" else ""))
+            positions = key.endswith(("centre", "start", "end")) or key == "contact_zone"
+            _require(positions or size >= low, key,
+                     f"{given(key, value, size)}: at least {low:g} b{of_b}: "
+                     "smaller, it cannot be meshed beside the others")
+        load = self.load
+        if load.force is not None:
+            _require(load.force <= LARGEST_LOAD * self.modulus * b, "load.force",
+                     f"load.force = {load.force:g} must be at most {LARGEST_LOAD:g} E b = "
+                     f"{LARGEST_LOAD * self.modulus * b:g}: beyond, strains of millions")
+        if load.displacement is not None:
+            _require(load.displacement <= LARGEST_LOAD * b, "load.displacement",
+                     f"load.displacement = {load.displacement:g} must be at most "
+                     f"{LARGEST_LOAD:g} b = {LARGEST_LOAD * b:g}")
+
+    def patch_ends(self, coating):
+        """The x1 of a patch's ends (a half model's symmetry axis is no end)."""
+        return [end for end in (coating.start, coating.end)
+                if not (self.symmetric and end == 0.0)]
+
+    def _check_layout(self):
+        base, indenter = self.base, self.indenter
+        low = 0.0 if self.symmetric else -base.top
+        if self.symmetric:
+            _require(indenter.centre == 0, "indenter.centre",
+                     f"indenter.centre = {indenter.centre!r} must be 0 in a half model "
+                     "(symmetric = true); off-centre loads need symmetric = false")
+        for number, coating in enumerate(self.coatings, start=1):
+            key = f"coating[{number}]."
+            where = (f"the roller's upper half, |x1| < radius = {base.radius!r}"
+                     if base.shape == "roller" else f"the base's top face [{low:g}, {base.top:g}]")
+            limit = base.top
+            inside = (low <= coating.start and coating.end <= limit if base.shape == "block"
+                      else low <= coating.start and coating.end < limit and coating.start > -limit)
+            name = "start" if coating.start < low or coating.start <= -limit else "end"
+            _require(inside, key + name,
+                     f"{key}{name} = {getattr(coating, name)!r} (the patch [{coating.start!r}, "
+                     f"{coating.end!r}]) must lie on {where}"
+                     + (" (a half model starts at the symmetry axis x1 = 0)"
+                        if self.symmetric and coating.start < 0 else ""))
+            if base.shape == "block":
+                _require(coating.thickness < base.height, key + "thickness",
+                         f"{key}thickness = {coating.thickness!r} must be below base.height "
+                         f"= {base.height!r}")
+            else:
+                _require(coating.thickness < base.radius, key + "thickness",
+                         f"{key}thickness = {coating.thickness!r} must be below base.radius "
+                         f"= {base.radius!r}")
+        ordered = sorted(enumerate(self.coatings, start=1), key=lambda item: item[1].start)
+        for (n1, first), (n2, second) in zip(ordered, ordered[1:]):
+            _require(second.start >= first.end, f"coating[{n2}].start",
+                     f"coating[{n2}].start = {second.start!r} overlaps coating[{n1}] "
+                     f"[{first.start!r}, {first.end!r}]: patches must not overlap")
+        if self.contact_zone is not None:
+            zone = self.contact_zone
+            _require(len(zone) == 2 and all(_finite(z) for z in zone) and zone[0] < zone[1],
+                     "contact_zone", f"contact_zone = {list(zone)!r} must be [x1_start, x1_end] "
+                     "with x1_start < x1_end")
+            for number, coating in enumerate(self.coatings, start=1):
+                for end in zone:
+                    _require(not coating.start < end < coating.end, "contact_zone",
+                             f"contact_zone = {list(zone)!r} ends inside coating[{number}] "
+                             f"[{coating.start!r}, {coating.end!r}]: a zone must take a patch "
+                             "whole or not at all")
+        if self.load.force is not None:
+            _require(self.load.force >= SMALLEST_LOAD * self.modulus, "load.force",
+                     f"load.force = {self.load.force!r} must be at least {SMALLEST_LOAD:g} "
+                     f"E b = {SMALLEST_LOAD * self.modulus:g}: the indenter is pushed onto "
+                     "the base")
+        descent = self.load.displacement
+        _require(descent is None or descent == 0 or descent >= SMALLEST_LOAD, "load.displacement",
+                 f"load.displacement = {descent!r} must be 0 or at least {SMALLEST_LOAD:g} b: "
+                 "smaller descents underflow")
+        moduli = {"indenter.E": self.indenter.E, "base.E": self.base.E}
+        moduli.update((f"coating[{n}].E", c.E) for n, c in enumerate(self.coatings, start=1))
+        for key, modulus in moduli.items():
+            _require(MODULUS_RANGE[0] <= modulus <= MODULUS_RANGE[1], key,
+                     f"{key} = {modulus!r} must lie in [{MODULUS_RANGE[0]:g}, "
+                     f"{MODULUS_RANGE[1]:g}] (any unit of stress does: Pa, MPa, E): beyond, "
+                     "squared stresses and penalties under- or overflow")
+        softest, stiffest = min(moduli, key=moduli.get), max(moduli, key=moduli.get)
+        _require(moduli[stiffest] <= MODULUS_RATIO * moduli[softest], softest,
+                 f"{softest} = {moduli[softest]!r} must be at least {stiffest} / "
+                 f"{MODULUS_RATIO:g} = {moduli[stiffest] / MODULUS_RATIO:g}: the coupled "
+                 "problem's conditioning grows with the moduli's ratio")
+
+    @property
+    def modulus(self):
+        """E, the scene's unit of stress: the stiffer body's modulus. The penalty and the
+        Robin parameter are set in b/E and E/b, so that a scene behaves the same in any
+        unit of stress."""
+        return max(self.indenter.E, self.base.E)
+
+    # ---- derived quantities -------------------------------------------------------
+    @property
+    def mirror_symmetric(self):
+        """A full model whose geometry and materials are symmetric about x1 = 0: its
+        meshes are made mirror-symmetric, so that it equals its half model."""
+        if self.symmetric or self.indenter.centre != 0:
+            return False
+        if self.contact_zone is not None and self.contact_zone[0] != -self.contact_zone[1]:
+            return False
+        mirrored = {replace(c, start=-c.end, end=-c.start) for c in self.coatings}
+        return mirrored == set(self.coatings)
+
+    def with_models(self, models):
+        """The scene with its patches modelled by ``models``, one per patch."""
+        return replace(self, coatings=tuple(replace(c, model=m)
+                                            for c, m in zip(self.coatings, models)))
+
+    @property
+    def half_force(self):
+        """The stamp's force on the modelled part (half of it in a half model)."""
+        if self.load.force is None:
+            return None
+        return 0.5 * self.load.force if self.symmetric else self.load.force
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How the scene is solved: penalty, Robin loop, mesh."""
+
+    theta: Optional[float] = None  # penalty parameter of (16), in b/E (E: Scene.modulus);
+                                   # None: PAPER_THETA for the paper's loop, else
+                                   # THETA_PER_LENGTH times the interface element's length
+    method: str = "active-set"     # Robin loop: "active-set" (accelerated) or "paper"
+    inner_solve: str = "auto"      # active-set loop, each contact set's fixed point:
+                                   # "direct" from the subdomains' Robin maps, "iterate"
+                                   # (Anderson), "two-level" (Anderson with a coarse
+                                   # correction: the scene at mesh level 1; on level 1
+                                   # itself, with interface elements twice as long),
+                                   # "auto": direct where
+                                   # the maps cost less, else two-level, else iterate
+    robin: Optional[float] = None  # Robin parameter gamma, E/b; None: 1/theta (paper), 2
+    rho: float = 0.5               # relaxation (24), in (0, 1]
+    eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
+    max_iterations: int = 3000
+    mesh_level: int = 1            # 1: the paper's mesh; L: every mesh size divided by L
+    element_size: float = 0.0625   # length of an interface element at mesh level 1 (b)
+    workers: str = "persistent"    # FreeFEM workers: persistent, or a fresh process per solve
+    worker_timeout: float = 600.0  # seconds a worker may take to answer before the run fails
+    memory_limit: Optional[float] = None  # GiB the run may take; None: 3/4 of what is free
+    model_tolerance: float = 0.01  # model = "auto": the estimated error of the peak
+                                   # contact stress a chosen coating model may have
+    body_fields: bool = True       # write the indenter's and base's nodal fields (CSV,
+                                   # VTU); the interfaces' tables, the reactions and the
+                                   # coatings' fields are written always
+
+    def __post_init__(self):
+        _choice("workers", self.workers, WORKERS)
+        _choice("method", self.method, METHODS)
+        _choice("inner_solve", self.inner_solve, INNER_SOLVES)
+        _require(not (self.method == "paper" and self.inner_solve == "direct"), "inner_solve",
+                 "inner_solve = 'direct' needs method = 'active-set': the paper's loop "
+                 "updates its contact set at every iteration and has no fixed point to solve")
+        _require(not (self.method == "paper" and self.inner_solve == "two-level"),
+                 "inner_solve", "inner_solve = 'two-level' needs method = 'active-set': "
+                 "the paper's loop is not accelerated")
+        _require(not (self.workers == "fresh" and self.inner_solve == "direct"), "inner_solve",
+                 "inner_solve = 'direct' needs workers = 'persistent': a fresh process per "
+                 "solve keeps no factorisation to probe the maps with")
+        _positive_int("mesh_level", self.mesh_level)
+        _require(self.mesh_level <= MESH_LEVEL_LIMIT, "mesh_level",
+                 f"mesh_level = {self.mesh_level!r} must be at most {MESH_LEVEL_LIMIT}: each "
+                 "level divides every mesh size, and the paper's mesh at level "
+                 f"{MESH_LEVEL_LIMIT} already has millions of unknowns")
+        _positive("element_size", self.element_size)
+        _require(self.element_size >= ELEMENT_SIZE_RANGE[0], "element_size",
+                 f"element_size = {self.element_size!r} must be at least "
+                 f"{ELEMENT_SIZE_RANGE[0]:g} b (a length in b, or with its unit in a scene with "
+                 "[units]): smaller, the faces need millions of elements")
+        if self.theta is None:          # the default, tied to the mesh (frozen: set once)
+            object.__setattr__(self, "theta", PAPER_THETA if self.method == "paper" else
+                               THETA_PER_LENGTH * self.element_size / self.mesh_level)
+        _require(_finite(self.theta) and THETA_RANGE[0] <= self.theta <= THETA_RANGE[1], "theta",
+                 f"theta = {self.theta!r} must lie in [{THETA_RANGE[0]:g}, {THETA_RANGE[1]:g}] "
+                 "(b/E): a softer penalty is no contact law (the bodies pass through each "
+                 "other), a stiffer one leaves the problem ill-conditioned")
+        if self.robin is not None:
+            _require(_finite(self.robin) and ROBIN_RANGE[0] <= self.robin <= ROBIN_RANGE[1],
+                     "robin", f"robin = {self.robin!r} must lie in [{ROBIN_RANGE[0]:g}, "
+                     f"{ROBIN_RANGE[1]:g}] (E/b): the Robin exchange slows down by about the "
+                     "factor gamma/2 or 2/gamma away from its best value 2 (measured: 290 "
+                     "iterations at 0.01; with two levels, 4 E over the element length) and "
+                     "stops converging beyond that range")
+            # the Robin-Robin exchange loses the penalised laws at gamma theta = 2 (docs/method.md)
+            _require(self.robin * self.theta < 1.5, "robin",
+                     f"robin = {self.robin!r} must be below 1.5/theta = {1.5 / self.theta:g}: "
+                     "at gamma theta = 2 the Robin exchange no longer fixes the interface laws")
+        _require(_finite(self.rho) and 0 < self.rho <= 1, "rho",
+                 f"rho = {self.rho!r} must lie in (0, 1]")
+        _require(_finite(self.eps_u) and 0 < self.eps_u <= LOOSEST_EPS_U, "eps_u",
+                 f"eps_u = {self.eps_u!r} must lie in (0, {LOOSEST_EPS_U:g}]: looser, the "
+                 "contact set is decided on iterates too rough to place its edges and the "
+                 "error estimate no longer bounds the error (measured: the bond shear 3.4 % "
+                 "off at 1e-2)")
+        _positive_int("max_iterations", self.max_iterations)
+        _require(_finite(self.worker_timeout) and self.worker_timeout >= 1, "worker_timeout",
+                 f"worker_timeout = {self.worker_timeout!r} must be at least 1 (seconds): a "
+                 "worker's set-up alone takes a good part of a second")
+        if self.memory_limit is not None:
+            _positive("memory_limit", self.memory_limit)
+        _require(_finite(self.model_tolerance) and 0 < self.model_tolerance <= 1,
+                 "model_tolerance", f"model_tolerance = {self.model_tolerance!r} must lie in "
+                 "(0, 1] (a relative error; 0.01 is 1 %)")
+        _require(isinstance(self.body_fields, bool), "body_fields",
+                 f"body_fields = {self.body_fields!r} must be true or false")
+
+    @property
+    def two_levels(self):
+        """Whether a run iterates with a coarse correction (orchestrate/ddm/coarse.py; unless
+        its interfaces do not pair up with the coarse mesh's): its coarse level starts
+        with the run, and its workers probe no map (orchestrate/workers/subdomains.py)."""
+        return self.method != "paper" and (
+            self.inner_solve == "two-level" or (self.inner_solve == "auto" and self.mesh_level > 1))
+
+    @property
+    def robin_parameter(self):
+        """gamma: as given, else the paper's 1/theta for its loop; for the active-set loop
+        2 E/b (measured best on the figure scenes, docs/method.md), or TWO_LEVEL_ROBIN_PER_LENGTH
+        E over the element length where a coarse correction may take the smooth modes;
+        never above 1/theta, where the exchange stays away from its singularity
+        gamma theta = 2."""
+        if self.robin is not None:
+            return self.robin
+        if self.method == "paper":
+            return 1.0 / self.theta
+        gamma = (TWO_LEVEL_ROBIN_PER_LENGTH / self.element_size if self.two_levels
+                 else DEFAULT_ROBIN)
+        return min(gamma, 1.0 / self.theta)
+
+
+def check_compatible(scene, settings):
+    """What a scene needs of the settings."""
+    _require(not (scene.load.force is not None and settings.method == "paper"), "method",
+             "method = 'paper' cannot carry load.force: the paper's loop leaves the indenter "
+             "unsupported while no point is in contact; use method = 'active-set'")
+
+
+def to_dict(obj):
+    """Plain data for JSON: dataclasses as dicts, an infinite radius as None."""
+    data = asdict(obj)
+    if isinstance(obj, Scene):
+        data["coatings"] = [asdict(c) for c in obj.coatings]
+        if math.isinf(obj.indenter.radius):
+            data["indenter"]["radius"] = None
+        data["contact_zone"] = list(obj.contact_zone) if obj.contact_zone else None
+    return data
+
+
+def scene_from_dict(data):
+    """The inverse of ``to_dict`` for a scene (a summary.json's "scene")."""
+    indenter = dict(data["indenter"])
+    if indenter.get("radius") is None:
+        indenter["radius"] = math.inf
+    return Scene(indenter=Indenter(**indenter), base=Base(**data["base"]),
+                 coatings=tuple(Coating(**c) for c in data["coatings"]),
+                 load=Load(**data["load"]), symmetric=data["symmetric"],
+                 contact_zone=data.get("contact_zone"),
+                 units=Units(**data.get("units", {})))     # older summaries: b and E
+
+
+def settings_fields():
+    return [f.name for f in fields(Settings)]

@@ -1,0 +1,364 @@
+"""Units: a scene given in mm and MPa (or any consistent units) and outputs that say theirs.
+
+The solver works in the paper's dimensionless form: lengths in b, stresses in E. A scene
+file may state other units in a [units] table:
+
+    [units]
+    length = "mm"    # every length, position and displacement of the file
+    stress = "MPa"   # every modulus; a force per unit width is stress x length (MPa mm)
+    b = 10.0         # the solver's unit of length, in mm: the settings element_size,
+                     # theta and robin are in b and E (E: the stiffer body's modulus)
+
+Such a scene is made dimensionless once, before any work (lengths / b, moduli / E, a
+force / (E b)), and every output of the run is expressed in the file's units once, when
+the run is written (express_run): the CSV columns, the reactions, the VTU fields and the
+summary, each scaled by its kind (KINDS: a registry by name; a name missing from it is a
+fault, so that no output can leave unscaled). Without [units] the scene is in b and E and
+nothing is scaled. The summary's "units" entry names the unit of every kind and column.
+
+Unit names are checked by pint (https://pint.readthedocs.io): ``length`` must name a unit
+of length, ``stress`` one of stress ("b" and "E" are the dimensionless default). A scene
+value may carry its own unit, ``E = "450 GPa"``, ``thickness = "20 um"``, ``force =
+"200 N/mm"`` (in a file, a --set or shorthand flag, a sweep value or an override from
+Python): it is converted into the file's units before the scene is built
+(``value_in_units``), and a unit of the wrong dimension or one pint does not know is
+refused, naming the key and what was due. pint is imported only where a unit is read.
+"""
+
+from dataclasses import dataclass, fields, replace
+import math
+import os
+
+import meshio
+import numpy as np
+import pandas as pd
+
+from orchestrate.errors import ParameterError
+from orchestrate.files.outputs import write_csv, write_text, write_vtu
+
+LENGTH, STRESS, FORCE, MOMENT = "length", "stress", "force", "moment"
+INVERSE_LENGTH = "inverse length"      # the paper's chi, the face's curvature x^2 factor
+NUMBER, SECONDS, DEGREES, INDEX = "number", "seconds", "degrees", "index"  # not scaled
+
+# The scene's values by table and field: what is not listed is a number (Poisson ratios,
+# shear factors) or not a number (names of models and shapes).
+SCENE_KINDS = {
+    "indenter": {"radius": LENGTH, "width": LENGTH, "height": LENGTH, "centre": LENGTH,
+                 "E": STRESS},
+    "base": {"width": LENGTH, "height": LENGTH, "radius": LENGTH, "bore": LENGTH, "E": STRESS},
+    "coating": {"start": LENGTH, "end": LENGTH, "thickness": LENGTH, "E": STRESS},
+    "load": {"displacement": LENGTH, "force": FORCE},
+}
+
+# Every number a run writes, by its name (a CSV column, a VTU field, a summary key).
+KINDS = {
+    # positions and displacements
+    "x1": LENGTH, "x2": LENGTH, "s": LENGTH, "xi": LENGTH, "u1": LENGTH, "u2": LENGTH,
+    "v": LENGTH, "w": LENGTH, "a_t": LENGTH, "a_n": LENGTH, "b_t": LENGTH, "b_n": LENGTH,
+    "displacement": LENGTH, "descent": LENGTH, "contact_half_width": LENGTH,
+    "contact_half_width_estimate": LENGTH, "contact_zones": LENGTH,
+    # stresses
+    "sigma_n": STRESS, "sigma_t": STRESS, "sigma_eq": STRESS, "s11": STRESS, "s22": STRESS,
+    "s12": STRESS, "s33": STRESS, "stress": STRESS, "sigma11_top": STRESS,
+    "sigma11_bottom": STRESS, "sigma13_mean": STRESS, "value": STRESS,
+    "peak_contact_stress": STRESS, "peak_interface_stress": STRESS,
+    "peak_normal_stress": STRESS,
+    # forces per unit width (the shell's forces too), moments per unit width
+    "T11": FORCE, "T13": FORCE, "T33": FORCE, "force": FORCE, "contact_force": FORCE,
+    "interface_force": FORCE, "stamp_reaction": FORCE, "base_reaction": FORCE,
+    "total_force": FORCE, "M11": MOMENT,
+    # numbers: rotations, strains, counts, relative errors, angles; times; node indices
+    **{name: NUMBER for name in (
+        "gamma", "epsilon", "iteration", "relative_change", "displacement_change",
+        "traction_change", "traction_component_change", "error_estimate", "active_points",
+        "active_set_changed", "active_set_update", "direct", "iterations", "final_relative_change",
+        "active_set_changes", "tolerance", "patch", "estimated_error",
+        "h2_over_a", "contact", "bond", "shell", "stretch_shell", "elastic",
+        "mesh_dependent", "converged", "end_zone")},
+    **{name: SECONDS for name in ("seconds", "wait", "wall_time_s", "setup_time_s",
+                                  "time_per_iteration_s")},
+    "normal_mismatch_deg": DEGREES,
+    **{f"n{corner}": INDEX for corner in range(6)},     # NAME_cells.csv: rows of NAME.csv
+}
+TIMER_PREFIXES = ("cpu_", "back_")   # history.csv: seconds per subdomain (cpu_base, ...)
+# Summary entries kept as they are: the scene is written as given (in its units), the
+# settings are in b and E by definition, the rest are counts by subdomain or texts.
+SUMMARY_AS_IS = ("scene", "settings", "status", "reason", "dofs", "units", "not_estimated",
+                 "estimated_unknowns", "model", "started_from", "inner_solve_used",
+                 "provenance", "warnings", "sweep_point", "inner_solve_fallback")     # warnings: texts and ratios (validity.py)
+
+
+# ---- unit names and values with units (pint) -------------------------------------------
+
+DIMENSIONLESS_NAMES = {LENGTH: "b", STRESS: "E"}    # the solver's own units
+# A kind's dimension as pint writes it, and how a person names it, with examples
+_DIMENSIONS = {
+    LENGTH: ("[length]", "a length", "mm, um, in"),
+    STRESS: ("[mass] / [length] / [time] ** 2", "a stress", "MPa, GPa, psi"),
+    FORCE: ("[mass] / [time] ** 2", "a force per unit width", "N/mm, kN/m"),
+    INVERSE_LENGTH: ("1 / [length]", "an inverse length", "1/mm"),
+}
+_DIMENSION_WORDS = {dimension: words for dimension, words, _ in _DIMENSIONS.values()}
+_DIMENSION_WORDS.update({"dimensionless": "a plain number",
+                         "[mass] * [length] / [time] ** 2": "a force, not per unit width "
+                         "(the scene is plane strain)",
+                         "[length] ** 2": "an area"})
+_registry = None
+
+
+def unit_registry():
+    """pint's registry, made once per process (it takes about 0.2 s)."""
+    global _registry
+    if _registry is None:
+        import pint
+        _registry = pint.UnitRegistry()
+    return _registry
+
+
+def _dimension_words(dimensionality):
+    text = str(dimensionality)
+    return _DIMENSION_WORDS.get(text, f"of dimension {text}")
+
+
+def _parsed(text, key, kind):
+    """pint's Quantity of ``text``; ParameterError naming ``key`` if it is not one (a
+    value of ``kind`` is due)."""
+    import pint
+    _, due, examples = _DIMENSIONS[kind]
+    try:
+        return unit_registry().Quantity(text.strip())
+    except pint.UndefinedUnitError as error:
+        names = getattr(error, "unit_names", None) or str(error)
+        names = ", ".join(map(repr, names)) if isinstance(names, (tuple, list)) else repr(names)
+        raise ParameterError(f"{key} = {text!r}: unknown unit {names} ({due} is due, e.g. "
+                             f"{examples}; unit names are case-sensitive)", key) from None
+    except Exception:      # pint's parser raises what its tokenizer meets (AssertionError...)
+        raise ParameterError(f"{key} = {text!r} is not a number with a unit ({due} is due, "
+                             f"e.g. \"{_EXAMPLES[kind]}\")", key) from None
+
+
+_EXAMPLES = {LENGTH: "20 um", STRESS: "450 GPa", FORCE: "200 N/mm", INVERSE_LENGTH: "0.01 1/mm"}
+
+
+def check_unit_name(name, kind, key):
+    """Refuse a unit name that pint does not know, or of another dimension than
+    ``kind`` (LENGTH, STRESS); the solver's own b and E pass as they are."""
+    if name == DIMENSIONLESS_NAMES[kind]:
+        return
+    dimension, due, examples = _DIMENSIONS[kind]
+    quantity = _parsed(name, key, kind)
+    if quantity.magnitude != 1:
+        raise ParameterError(f"{key} = {name!r} must be the name of a unit, without a "
+                             f"number (e.g. {examples})", key)
+    if not quantity.check(dimension):
+        raise ParameterError(f"{key} = {name!r} is {_dimension_words(quantity.dimensionality)}"
+                             f"; the name of a unit of {due.split(' ', 1)[1]} is due (e.g. "
+                             f"{examples})", key)
+
+
+def target_unit(units, kind):
+    """The unit, as pint reads it, in which a scene with ``units`` gives a value of
+    ``kind``; None where that kind is in the solver's b or E."""
+    if kind == STRESS:
+        return None if units.stress == "E" else units.stress
+    if units.length == "b":
+        return None
+    if kind == LENGTH:
+        return units.length
+    if kind == INVERSE_LENGTH:
+        return f"1 / ({units.length})"
+    if kind == FORCE:
+        return None if units.stress == "E" else f"({units.stress}) * ({units.length})"
+    raise ValueError(kind)
+
+
+def value_in_units(value, kind, units, key):
+    """A scene value in the scene's ``units``: numbers as they are (they are in those
+    units); a text, a number with its own unit ("20 um"), converted, its dimension
+    checked against ``kind``. ParameterError naming ``key`` otherwise."""
+    if not isinstance(value, str):
+        return value
+    dimension, due, _ = _DIMENSIONS[kind]
+    quantity = _parsed(value, key, kind)
+    if quantity.dimensionless:
+        return float(quantity.magnitude)       # "450": a number in the file's units
+    if not quantity.check(dimension):
+        raise ParameterError(f"{key} = {value!r} is {_dimension_words(quantity.dimensionality)}"
+                             f"; {due} is due (e.g. \"{_EXAMPLES[kind]}\")", key)
+    unit = target_unit(units, kind)
+    if unit is None:
+        solver_units = "stresses are in E" if kind == STRESS or units.length != "b" \
+            else "lengths are in b"
+        raise ParameterError(f"{key} = {value!r} has a unit, but the scene's {solver_units}: "
+                             "give the scene a [units] table (length, stress and b) or a "
+                             "plain number", key)
+    return float(quantity.to(unit).magnitude)
+
+
+@dataclass(frozen=True)
+class Units:
+    """The units of a scene: the names of its length and stress units and b, the
+    solver's unit of length, in the length unit (a number, or a length with its own
+    unit, "2.5 mm"). The default is the dimensionless form."""
+
+    length: str = "b"
+    stress: str = "E"
+    b: float = 1.0
+
+    def __post_init__(self):
+        for key, kind in (("length", LENGTH), ("stress", STRESS)):
+            value = getattr(self, key)
+            if not isinstance(value, str) or not value.strip():
+                raise ParameterError(f"units.{key} = {value!r} must be the name of a unit, "
+                                     'e.g. "mm" or "MPa"', f"units.{key}")
+            check_unit_name(value, kind, f"units.{key}")
+        if isinstance(self.b, str):
+            object.__setattr__(self, "b", value_in_units(self.b, LENGTH, self, "units.b"))
+        if not (isinstance(self.b, (int, float)) and not isinstance(self.b, bool)
+                and math.isfinite(self.b) and self.b > 0):
+            raise ParameterError(f"units.b = {self.b!r} must be a positive number: the "
+                                 f"solver's unit of length in {self.length}", "units.b")
+
+    @property
+    def dimensionless(self):
+        return self == Units()
+
+    def names(self):
+        """The unit of each kind of output, as a person writes it."""
+        length, stress = self.length, self.stress
+        force = "E b" if self.dimensionless else f"{stress} {length}"
+        moment = "E b^2" if self.dimensionless else f"{stress} {length}^2"
+        return {LENGTH: length, STRESS: stress, FORCE: f"{force} (per unit width)",
+                MOMENT: f"{moment} (per unit width)", NUMBER: "1", SECONDS: "s",
+                DEGREES: "degree", INDEX: "row of NAME.csv"}
+
+
+def units_from_table(table, path=None):
+    """Units from a scene file's [units] table; errors name the file and the key."""
+    where = f"{path}: " if path else ""
+    if not isinstance(table, dict):
+        raise ParameterError(f"{where}units must be a table", "units")
+    allowed = [f.name for f in fields(Units)]
+    unknown = sorted(set(table) - set(allowed))
+    if unknown:
+        raise ParameterError(f"{where}unknown key units.{unknown[0]} (allowed in units: "
+                             f"{', '.join(allowed)})", f"units.{unknown[0]}")
+    if "b" not in table and table.get("length", "b") != "b":
+        raise ParameterError(f"{where}units.b is missing: give the solver's unit of length "
+                             f"in {table['length']} (the mesh's element_size, theta and robin "
+                             "are in b; the paper's bodies are 4 b wide)", "units.b")
+    if "b" in table and table.get("length", "b") == "b":
+        raise ParameterError(f"{where}units.b = {table['b']!r} needs units.length, the unit "
+                             "it is given in (lengths in b are b's own unit: b = 1)", "units.b")
+    try:
+        return Units(**table)
+    except ParameterError as error:
+        raise ParameterError(where + str(error), error.key) from None
+
+
+@dataclass(frozen=True)
+class Scales:
+    """What one unit of the solver is in the scene's units: b (length) and E (stress)."""
+
+    length: float = 1.0
+    stress: float = 1.0
+
+    def of(self, kind):
+        return {LENGTH: self.length, STRESS: self.stress, FORCE: self.stress * self.length,
+                MOMENT: self.stress * self.length ** 2}.get(kind, 1.0)
+
+
+def dimensionless(scene):
+    """(the scene in b and E, Scales back to its units). A scene in b and E is returned
+    as it is: nothing is scaled, not even by a rounding."""
+    if scene.units.dimensionless:
+        return scene, Scales()
+    scales = Scales(scene.units.b, scene.modulus)
+
+    def part(value, table):
+        changes = {}
+        for name, kind in SCENE_KINDS[table].items():
+            number = getattr(value, name)
+            if number is not None:
+                changes[name] = number / scales.of(kind)
+        return replace(value, **changes)
+    zone = scene.contact_zone
+    return replace(scene, indenter=part(scene.indenter, "indenter"),
+                   base=part(scene.base, "base"), load=part(scene.load, "load"),
+                   coatings=tuple(part(c, "coating") for c in scene.coatings),
+                   contact_zone=None if zone is None else tuple(z / scales.length for z in zone),
+                   units=Units()), scales
+
+
+def kind_of(name, where):
+    """The kind of an output's number by its name; a name not registered is a fault."""
+    if name.startswith(TIMER_PREFIXES):
+        return SECONDS
+    if name not in KINDS:
+        raise KeyError(f"{where}: {name!r} has no unit in orchestrate/model/units.py KINDS")
+    return KINDS[name]
+
+
+def scaled_summary(value, scales, key="summary"):
+    """A summary (or a part of it) with every number in the scene's units."""
+    if isinstance(value, dict):
+        return {k: v if k in SUMMARY_AS_IS else scaled_summary(v, scales, k)
+                for k, v in value.items()}
+    if isinstance(value, list):
+        return [scaled_summary(v, scales, key) for v in value]
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        scale = scales.of(kind_of(key, "summary.json"))
+        return value if scale == 1.0 else value * scale     # counts stay integers
+    return value
+
+
+def column_units(folder, units):
+    """{file: {column: unit}} of the run's CSV files, for the summary."""
+    names = units.names()
+    table = {}
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".csv"):
+            with open(os.path.join(folder, name)) as f:     # plain names, no quotes
+                columns = f.readline().strip().split(",")
+            table[name] = {c: names[kind_of(c, name)] for c in columns if c != "interface"}
+    return table
+
+
+def _scaled_column(values, column, file, scales):
+    if column == "interface":                # the interfaces' names
+        return values
+    scale = scales.of(kind_of(column, file))
+    return values if scale == 1.0 else values * scale
+
+
+def express_run(folder, scales):
+    """Express every file of a finished run's FOLDER in the scene's units: CSV columns,
+    reactions (forces) and VTU points and fields, by kind, each rewritten atomically; a
+    run in b and E has nothing to do."""
+    if scales == Scales():
+        return
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name)
+        if name.endswith(".csv"):
+            table = pd.read_csv(path)
+            write_csv(path, {c: _scaled_column(table[c].to_numpy(), c, name, scales)
+                             for c in table.columns})
+        elif name.endswith("_reactions.txt"):
+            force = scales.of(FORCE)
+            lines = [line.split() for line in open(path).read().split("\n") if line.strip()]
+            write_text(path, "".join(f"{label} {float(r1) * force!r} {float(r2) * force!r}\n"
+                                     for label, r1, r2 in lines))
+        elif name.endswith(".vtu"):
+            mesh = meshio.read(path)
+            mesh.points = mesh.points * scales.length
+            mesh.point_data = {field: np.asarray(data) * scales.of(kind_of(field, name))
+                               for field, data in mesh.point_data.items()}
+            write_vtu(path, mesh)
+
+
+def summary_units(folder, units, scales):
+    """The summary's "units" entry: the unit of each kind, what b and E are in the
+    scene's units, and the unit of every column of every CSV file."""
+    scale = {} if units.dimensionless else {"b": f"{scales.length!r} {units.length}",
+                                            "E": f"{scales.stress!r} {units.stress}"}
+    return {**units.names(), **scale, "columns": column_units(folder, units)}

@@ -1,0 +1,147 @@
+"""The answers a coating engineer looks for, from a finished run's stresses.
+
+    contact     the peak contact pressure (positive), where it is
+    bonds       per bond: the largest tensile normal stress (peel), the largest
+                compressive one and the largest shear, each with its position
+    coatings    per patch: the largest von Mises stress and its position (2D model);
+                the fibre stresses at the top and bottom faces and the mean shear from
+                the shell's forces (shell models)
+
+Where a bonded coating ends, the elastic solution is singular (a bi-material wedge): the
+stresses there grow as the mesh refines and have no converged value. Every maximum is
+therefore taken twice: away from the patches' ends (the values to design with) and
+within their end zones ("at_patch_ends", marked mesh-dependent: they say where the
+stress concentrates, not how much); each says which it is ("end_zone": false or true).
+An end zone reaches END_ZONE thicknesses from the end, but at most END_ZONE_SHARE of
+the patch's length: a coating as thick as its patch is long (the paper's h2 = b on a
+patch of 2 b) keeps values away from its ends, and an end's zone never reaches the
+other end's, nor the symmetry axis of a half model, which is no end. The contact's
+peak pressure is split the same way: a peak at a patch end (the indenter pressing on
+the step of a patch's edge) is singular too.
+
+Computed in the solver's b and E, expressed in the scene's units with every output
+(orchestrate/model/units.py); compression is negative, tension positive.
+"""
+
+import numpy as np
+
+END_ZONE = 2.0   # thicknesses from a patch's end: measured, the 2D model's peak there
+                 # moved 11-42 % between meshes (studies/model_errors.py)
+END_ZONE_SHARE = 0.25   # of the patch's length at most (the module's text)
+
+
+def end_zone_width(coating, thicknesses=END_ZONE, capped=True):
+    """How far from a patch's end its end zone reaches (``capped``: at most
+    END_ZONE_SHARE of its length)."""
+    width = thicknesses * coating.thickness
+    return min(width, END_ZONE_SHARE * (coating.end - coating.start)) if capped else width
+
+
+def near_patch_ends(scene, x1, thicknesses=END_ZONE, capped=True):
+    """Which points x1 lie in some patch's end zone (end_zone_width)."""
+    near = np.zeros(len(x1), dtype=bool)
+    for coating in scene.coatings:
+        width = end_zone_width(coating, thicknesses, capped)
+        for end in scene.patch_ends(coating):
+            near |= np.abs(np.asarray(x1) - end) <= width
+    return near
+
+
+TENSION, COMPRESSION, MAGNITUDE = "tension", "compression", "magnitude"
+
+
+def _extreme(values, x1, x2, kind, end_zone):
+    """{value, x1, x2, end_zone} of the largest tension (> 0), compression (< 0) or
+    magnitude; None where there is none."""
+    if len(values) == 0:
+        return None
+    i = int(np.argmin(values) if kind == COMPRESSION else np.argmax(values))
+    if (kind == TENSION and values[i] <= 0) or (kind == COMPRESSION and values[i] >= 0):
+        return None
+    return {"value": float(values[i]), "x1": float(x1[i]), "x2": float(x2[i]),
+            "end_zone": end_zone}
+
+
+def _maxima(scene, quantities, x1, x2):
+    """For each (name, values, kind): the extreme away from the patches' ends and,
+    apart, the one within their end zones (mesh-dependent)."""
+    x1, x2 = np.asarray(x1), np.asarray(x2)
+    near_end = near_patch_ends(scene, x1)
+    away = {name: _extreme(np.asarray(values)[~near_end], x1[~near_end], x2[~near_end], kind,
+                           False)
+            for name, values, kind in quantities}
+    if near_end.any():
+        away["at_patch_ends"] = {
+            "mesh_dependent": True,
+            **{name: _extreme(np.asarray(values)[near_end], x1[near_end], x2[near_end], kind,
+                              True)
+               for name, values, kind in quantities}}
+    return away
+
+
+def contact_answers(scene, x1, x2, sigma_n):
+    """The peak contact pressure (positive) and its position, away from the patches'
+    ends and, apart, within their end zones."""
+    return _maxima(scene, [("peak_pressure", -np.asarray(sigma_n), TENSION)], x1, x2)
+
+
+def bond_answers(scene, x1, x2, sigma_n, sigma_t):
+    """Peel (the largest tensile sigma_n: the bond opens where it is positive), the
+    largest compression and the largest |shear| on one bond (the traction on the base)."""
+    return _maxima(scene, [("peel", sigma_n, TENSION), ("compression", sigma_n, COMPRESSION),
+                           ("shear", np.abs(sigma_t), MAGNITUDE)], x1, x2)
+
+
+def coating_answers(scene, nodes):
+    """The largest von Mises stress of a 2D patch and its position, from its nodes'
+    x1, x2, sigma_eq."""
+    return _maxima(scene, [("von_mises", nodes["sigma_eq"].to_numpy(), MAGNITUDE)],
+                   nodes["x1"], nodes["x2"])
+
+
+def fibre_stresses(fields, thickness):
+    """sigma11 at the shell's top and bottom faces and the mean transverse shear from its
+    forces: the strain is eps11 + xi3 chi11 through the thickness (freefem/shell.idp,
+    xi3 along the face's outward normal), so sigma11 = T11/h + 12 M11 xi3 / h^3, at
+    xi3 = +-h/2: T11/h +- 6 M11/h^2; the shear's mean is T13/h."""
+    membrane = fields["T11"].to_numpy() / thickness
+    bending = 6.0 * fields["M11"].to_numpy() / thickness ** 2
+    return membrane + bending, membrane - bending, fields["T13"].to_numpy() / thickness
+
+
+def shell_answers(scene, coating, fields):
+    """The extreme fibre stresses (tension and compression, top and bottom faces) and the
+    largest mean shear of a shell patch, from its fields (x1, x2, T11, T13, M11)."""
+    top, bottom, shear = fibre_stresses(fields, coating.thickness)
+    return _maxima(scene, [("top_tension", top, TENSION), ("top_compression", top, COMPRESSION),
+                           ("bottom_tension", bottom, TENSION),
+                           ("bottom_compression", bottom, COMPRESSION),
+                           ("mean_shear", np.abs(shear), MAGNITUDE)],
+                   fields["x1"], fields["x2"])
+
+
+def describe(answers, units):
+    """The answers as lines for a person, with the units of the summary's "units"."""
+    stress, length = units["stress"], units["length"]
+
+    def where(extreme):
+        return f"{extreme['value']:.4g} {stress} at x1 = {extreme['x1']:.4g} {length}"
+    lines = []
+    for group, found in (("", {"contact": answers["contact"]}), ("bonds", answers["bonds"]),
+                         ("coatings", answers["coatings"])):
+        for name, values in found.items():
+            away = [f"{quantity.replace('_', ' ')} {where(extreme)}"
+                    for quantity, extreme in values.items()
+                    if quantity != "at_patch_ends" and extreme]
+            ends = [f"{quantity.replace('_', ' ')} {where(extreme)}"
+                    for quantity, extreme in values.get("at_patch_ends", {}).items()
+                    if quantity != "mesh_dependent" and extreme]
+            if not away and not ends:
+                continue
+            if group == "bonds" and "peel" in values and not values["peel"] and not \
+                    values.get("at_patch_ends", {}).get("peel"):
+                away.insert(0, "no peel (in compression everywhere)")
+            lines.append(f"{name}: " + ", ".join(away or ["none away from the patch ends"])
+                         + (f"; in patch end zones (singular, mesh-dependent): "
+                            f"{', '.join(ends)}" if ends else ""))
+    return lines

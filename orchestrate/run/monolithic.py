@@ -1,0 +1,100 @@
+"""The monolithic solve of the discrete penalised problem (freefem/monolithic.edp).
+
+Every subdomain in one matrix, built by the workers' own FreeFEM includes, the contact
+set iterated to a fixed point. It solves the same discrete problem as the Robin loop
+(same forms, same interface points), which makes it the yardstick of the loop's
+correctness."""
+
+import os
+import tempfile
+
+import numpy as np
+
+from orchestrate.workers import freefem
+from orchestrate.ddm.contact import bond_traction, contact_stress
+from orchestrate.mesh.discretization import discretize
+from orchestrate.workers.subdomains import shell_numbers, write_inputs
+
+
+def write_problem(problem, files, path):
+    """The problem file monolithic.edp reads (its header says the format)."""
+    scene, names = problem.scene, list(problem.subdomains)
+    load = (f"force {scene.half_force!r}" if scene.load.force is not None
+            else f"descent {scene.load.displacement!r}")
+    lines = [f"{problem.penalty!r} {load} {len(names)} {len(problem.interfaces)}"]
+    for name, subdomain in problem.subdomains.items():
+        if subdomain.kind == "body":
+            numbers = [subdomain.E, subdomain.nu]
+            lines.append(" ".join(["body", files[name]["mesh"], *map(repr, numbers),
+                                   files[name]["sides"]]))
+        else:
+            lines.append(" ".join(["shell", files[name]["nodes"],
+                                   *map(repr, shell_numbers(subdomain)), files[name]["sides"]]))
+    for i, interface in enumerate(problem.interfaces):
+        ends = []
+        for side in interface.sides:
+            position = [k for k, (j, _) in enumerate(problem.sides_of(side.subdomain)) if j == i]
+            ends += [names.index(side.subdomain), position[0]]
+        kind = 0 if interface.kind == "contact" else 1
+        lines.append(" ".join(map(str, [kind, *ends])))
+        lines.append(f"{interface.size} " + " ".join(map(repr, interface.gap.tolist())))
+    with open(path, "w") as out:
+        out.write("\n".join(lines) + "\n")
+
+
+def solve_monolithic(problem, workdir):
+    """The monolithic solution's traces, {(interface index, side): trace} (shapes as the
+    Robin loop's), with "solves" and "descent"."""
+    files = write_inputs(problem, workdir)
+    problem_file = os.path.join(workdir, "problem.txt")
+    output = os.path.join(workdir, "monolithic_traces.txt")
+    write_problem(problem, files, problem_file)
+    freefem.run_script("monolithic.edp", ["-problem", problem_file, "-output", output],
+                       os.path.join(workdir, "monolithic.log"))
+    tokens = open(output).read().split()
+    traces, k = {}, 0
+    for i, interface in enumerate(problem.interfaces):
+        for side in (0, 1):
+            arrays = []
+            for _ in range(interface.components):
+                n = int(tokens[k])
+                arrays.append(np.array(tokens[k + 1:k + 1 + n], dtype=float))
+                k += 1 + n
+            traces[i, side] = arrays[0] if interface.components == 1 else np.array(arrays)
+    solves, settled, descent = int(tokens[k]), int(tokens[k + 1]), float(tokens[k + 2])
+    if not settled:
+        raise RuntimeError(f"the monolithic contact set did not settle in {solves} solves")
+    traces["solves"], traces["descent"] = solves, descent
+    return traces
+
+
+def interface_stresses(problem, traces):
+    """{interface index: stress} from the traces by the penalty laws: a contact's
+    sigma_n = (d - u_A - u_B)^- / theta, a bond's traction on the base (u_A - u_B)/theta
+    as (sigma_t, sigma_n)."""
+    theta, stresses = problem.penalty, {}
+    for i, interface in enumerate(problem.interfaces):
+        a, b = traces[i, 0], traces[i, 1]
+        if interface.kind == "contact":
+            stresses[i] = contact_stress(interface.gap, a, b, theta)
+        else:
+            stresses[i] = bond_traction(a, b, theta)
+    return stresses
+
+
+def monolithic_solution(scene, settings):
+    """The monolithic solution of a scene, in a private folder: its problem, traces
+    (solve_monolithic) and interface stresses."""
+    problem = discretize(scene, settings)
+    with tempfile.TemporaryDirectory(prefix="monolithic-") as workdir:
+        traces = solve_monolithic(problem, workdir)
+    return problem, traces, interface_stresses(problem, traces)
+
+
+def monolithic_curves(scene, settings):
+    """x1, sigma_12n and sigma_23n of the monolithic solve of a scene of the paper's kind
+    (one contact interface, one bond), and its number of solves."""
+    problem, traces, stresses = monolithic_solution(scene, settings)
+    contact, bond = problem.contacts[0], problem.bonds[0]
+    return (contact.position[:, 0], stresses[problem.interfaces.index(contact)],
+            stresses[problem.interfaces.index(bond)][1], traces["solves"])

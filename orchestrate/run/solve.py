@@ -1,0 +1,373 @@
+"""One run: validate, mesh, start the workers, iterate, write the results.
+
+Results of a run in its output folder, in the scene's units (b and E unless its file
+has a [units] table; summary.json's "units" names the unit of every column):
+    contact.csv    every contact interface's points: interface, x1, x2, s (arc length
+                   along the base's face), sigma_n (normal stress, compression negative)
+    interface.csv  every bond's points: interface, x1, x2, s, sigma_n, sigma_t (the
+                   traction on the base, in the face's normal and tangential components)
+    traces.csv     interface, x1, x2, s and each side's displacement trace: a_n, b_n (a
+                   contact: along each side's outward normal), a_t, a_n, b_t, b_n (a bond:
+                   the coating's and the base's, in the face's components)
+    history.csv    one row per Robin iteration
+    summary.json   scene, settings, outcome, answers, forces, peaks, contact zones, units
+                   (written last)
+    NAME.csv, NAME_cells.csv, NAME_reactions.txt, NAME.vtu   each body's fields (indenter,
+                   base, 2D coating patches coatingI): x1, x2, u1, u2, sigma_eq, s11, s22,
+                   s12, s33 at the P2 nodes (recovered stresses, freefem/recovery.idp), the
+                   P2 triangles as six node rows each, the consistent reactions on its
+                   supports (label, R1, R2), and all of it as quadratic VTU
+    coatingI_fields.csv, coatingI.vtu   a shell patch's xi, x1, x2, v, w, gamma, epsilon,
+                   T11, T13, M11, T33 along its mid-line; the VTU adds its fibre stresses
+    run.pvd        opens every VTU of the run together in ParaView
+Numbers that did not converge are never written as results: a run that diverges or
+stagnates writes only history.csv and a summary.json that says why.
+"""
+
+import contextlib
+from dataclasses import dataclass
+import math
+import os
+import time
+
+import numpy as np
+import pandas as pd
+
+from orchestrate.run import answers
+
+from orchestrate.workers import freefem
+from orchestrate.ddm.coarse import CoarseLevel
+from orchestrate.ddm.contact import contact_half_width, contact_zones
+from orchestrate.mesh.discretization import discretize
+from orchestrate.errors import RunFailed, WarnedBeforeWork  # noqa: F401  (raised here; callers import them from here too)
+from orchestrate.faults import checkpoint
+from orchestrate.files.folders import RunFolder, WorkFolder
+from orchestrate.mesh.labels import LABELS
+from orchestrate.model.model_choice import choose_models
+from orchestrate.files.outputs import read_reactions, write_csv, write_history, write_json, write_shell_fields
+from orchestrate.run.paraview import RUN_COLLECTION, write_collection
+from orchestrate.mesh.problem_size import check_size
+from orchestrate.workers.provenance import forms_hashes, provenance
+from orchestrate.ddm.robin import run_robin_loop
+from orchestrate.model.scene import check_compatible, to_dict
+from orchestrate.workers.session import Session
+from orchestrate.ddm.state import StateLayout
+from orchestrate.workers.subdomains import start_subdomains, write_inputs
+from orchestrate.model.units import dimensionless, express_run, scaled_summary, summary_units
+from orchestrate.run.validity import Say, mesh_warnings, run_warnings, scene_warnings
+from orchestrate.run.warm_start import start_state
+
+
+def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None,
+          session=None, sweep_point=None, start_name=None, strict=False):
+    """Solve the scene; write results into ``out_dir``; return the summary dict.
+    ``start_from``: a finished run's folder whose interface state is the first iterate
+    (orchestrate/run/warm_start.py: a run of this layout of bodies and interfaces, checked
+    before any work; not used where a coarse level starts the run from its own solution
+    of the scene); ``start_name``: what the summary calls it (default: its path).
+    ``session``: a
+    Session (orchestrate/workers/session.py) that keeps workers from scene to scene; without
+    one, the run's workers stop with it. ``sweep_point``: the sweep and inputs a sweep's
+    run records (orchestrate/sweeps/sweep.py), or None. ``strict``: WarnedBeforeWork for the
+    warnings known before any work (validity.py).
+
+    Before any work: ParameterError for a scene the settings cannot solve, a problem
+    too large for the machine, or an output folder another run holds or is writing
+    (``overwrite`` replaces an earlier run's folder whole). Then RunFailed (after
+    writing the report) if the loop does not converge, SystemFailure if a worker or a
+    file fails. The folder appears only once complete (orchestrate/files/folders.py)."""
+    freefem.executable()             # a missing FreeFEM is reported before any work
+    plan = prepare(scene, settings)
+    if strict and plan.warnings:
+        raise WarnedBeforeWork(list(plan.warnings))
+    scene, problem, model_choice, scales = plan.scene, plan.problem, plan.model_choice, plan.scales
+    start = (start_state(start_from, StateLayout(problem.interfaces))
+             if start_from is not None else None)         # checked before any work
+    forms = forms_hashes()           # what the workers started now will compile
+    started = time.perf_counter()
+    with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
+          contextlib.nullcontext(session) if session is not None else Session() as workers,
+          workers.lock,                          # one scene at a time per session
+          CoarseLevel(problem) if settings.two_levels      # probes meanwhile
+          else contextlib.nullcontext() as coarse_level):
+        scratch = str(folder.scratch)
+        files = write_inputs(problem, workdir)
+        with start_subdomains(problem, settings, files, workers, scratch) as subdomains:
+            setup_seconds = time.perf_counter() - started
+            checkpoint("setup")
+            coarse = None
+            if coarse_level is not None:        # a fine mesh: iterated with two levels
+                coarse = coarse_level.correction()
+                coarse_level.close()
+            # a coarse level solves this very scene's contact problem: a better start than
+            # a neighbour's answer (fewer contact sets: measured 1-2 against 0-9 at level 3)
+            first_iterate = start if coarse is None else None
+            loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate,
+                                  subdomains.robin_maps, coarse)
+            inner_solve_used = _inner_solve_used(loop.history, coarse is not None)
+            fallback = None
+            if (not loop.converged and loop.status in FALLBACK_STATUSES
+                    and settings.inner_solve == "auto" and settings.workers == "persistent"
+                    and inner_solve_used != "direct"):
+                # auto chose to iterate, and the iteration stalled or diverged (extreme
+                # moduli): each contact set solved directly from the maps instead
+                fallback = {"inner_solve": inner_solve_used, "status": loop.status,
+                            "reason": loop.reason, "iterations": loop.iterations}
+                subdomains.solve_directly()
+                earlier = loop.history
+                loop = run_robin_loop(subdomains.solve, problem, settings, progress,
+                                      first_iterate, subdomains.robin_maps)
+                for row in loop.history:
+                    row["iteration"] += len(earlier)
+                loop.history = earlier + loop.history
+                loop.iterations = len(loop.history)
+                inner_solve_used = f"{fallback['inner_solve']} ({fallback['status']}), then direct"
+            if loop.converged:
+                reached = zone_end_reached(problem, loop.psi)
+                if reached is not None:
+                    loop.converged, loop.status = False, "contact_zone"
+                    loop.reason = (f"the contact reaches the end of contact_zone at x1 = "
+                                   f"{reached:g}: contact beyond it was assumed away; widen it")
+            if loop.converged:
+                subdomains.write_outputs()   # the workers hold the fields of the last solve
+            dofs = subdomains.dofs
+            kept = subdomains.kept
+        summary = {
+            "scene": to_dict(scene),         # as solved: "auto" patches with their model
+            "settings": to_dict(settings),
+            "model_choice": model_choice,
+            "status": loop.status,
+            "reason": loop.reason,
+            "converged": loop.converged,
+            "iterations": loop.iterations,
+            "final_relative_change": loop.history[-1]["relative_change"],
+            "error_estimate": loop.error_estimate,
+            "wall_time_s": None,
+            "setup_time_s": setup_seconds,
+            "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
+            "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
+            "inner_solve_used": inner_solve_used,
+            "inner_solve_fallback": fallback,
+            "started_from": (start_name or str(start_from) if first_iterate is not None
+                             and settings.method != "paper" else None),
+            "dofs": dofs,
+            "workers_kept": kept,
+            "provenance": provenance(forms),
+            "sweep_point": sweep_point,
+            "warnings": list(plan.warnings),
+        }
+        write_history(os.path.join(scratch, "history.csv"), loop.history)
+        if loop.converged:
+            results, contact_x1, contact_stress = _write_results(problem, loop, scratch)
+            summary.update(results)
+            summary["warnings"] += run_warnings(problem, results, contact_x1, contact_stress,
+                                                Say(scales, scene.units))
+        if forms_hashes() != forms:
+            summary["warnings"].append(forms_edited_warning())
+        express_run(scratch, scales)         # every file in the scene's units
+        summary = scaled_summary(summary, scales)
+        summary["units"] = summary_units(scratch, scene.units, scales)
+        summary["wall_time_s"] = time.perf_counter() - started
+        write_json(os.path.join(scratch, "summary.json"), summary)
+        checkpoint("committing")
+        folder.commit()
+    if not loop.converged:
+        raise RunFailed(summary)
+    return summary
+
+
+# An iterated inner solve that auto chose and that ended so falls back to the direct solve
+FALLBACK_STATUSES = ("diverged", "stagnated")
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A run decided before any work (prepare)."""
+
+    scene: object          # the scene as given, every "auto" patch's model chosen
+    problem: object        # the problem of its dimensionless form
+    model_choice: object   # the choice's report, or None
+    scales: object         # Scales back to the scene's units
+    warnings: tuple        # what validity.py knows of the scene before any work
+
+
+def prepare(scene, settings):
+    """Everything checked and decided before any work (a Plan). ParameterError for
+    settings the scene cannot take or a problem too large."""
+    check_compatible(scene, settings)
+    solved, scales = dimensionless(scene)
+    solved, model_choice = choose_models(solved, settings)
+    problem = discretize(solved, settings)
+    check_size(problem)
+    chosen = scene.with_models([c.model for c in solved.coatings])
+    say = Say(scales, scene.units)
+    return Plan(chosen, problem, model_choice, scales,
+                tuple(scene_warnings(chosen, scene, settings, say)
+                      + mesh_warnings(problem, say)))
+
+
+def forms_edited_warning():
+    return {"code": "forms_edited", "message": "a FreeFEM form or script was edited while "
+            "the run went on: its workers may have read either version (provenance records "
+            "the hashes at its start); run it again", "value": None, "limit": None}
+
+
+def _inner_solve_used(history, two_levels):
+    """How the loop reached its contact sets' fixed points: "direct", "iterate" or
+    "two-level" (iterated with a coarse correction), or "direct, then ..." (a system too
+    ill-conditioned to solve directly)."""
+    direct = [row["direct"] for row in history]
+    if all(direct):
+        return "direct"
+    iterated = "two-level" if two_levels else "iterate"
+    return f"direct, then {iterated}" if direct[0] else iterated
+
+
+def zone_end_reached(problem, psi):
+    """x1 of an end of the user's contact_zone that the contact set reaches, if that end
+    is not also the end of a face (there contact stops anyway), else None."""
+    scene = problem.scene
+    if scene.contact_zone is None or not len(psi) or not problem.contacts:
+        return None
+    contacts = problem.contacts
+    ends = [(contacts[0].position[0, 0], psi[0]), (contacts[-1].position[-1, 0], psi[-1])]
+    indenter, base = scene.indenter, scene.base
+    low = 0.0 if scene.symmetric else max(indenter.centre - indenter.width, -base.top)
+    high = min(indenter.width if scene.symmetric else indenter.centre + indenter.width, base.top)
+    for (x1, active), face_end in zip(ends, (low, high)):
+        if active > 0 and abs(x1 - face_end) > 1e-9 * (1.0 + abs(face_end)):
+            return float(x1)
+    return None
+
+
+def interface_stresses(layout, state, psi):
+    """{interface index: stress} of the state: on a contact sigma_n (points,), on a bond
+    the traction on the base (sigma_t, sigma_n) (2, points).
+
+    Each side's traction is what its own Robin condition imposed in the last solve; the
+    two sides agree at convergence, and their mean is written. Off the contact set Psi
+    the law says zero; the loop's residual traction there (the active-set loop holds
+    inactive points with a Robin term) is of the order of eps_u and is not a stress."""
+    stresses = {}
+    psi_of = dict((i, psi[where]) for i, where in layout.contact_slices())
+    for i, interface in enumerate(layout.interfaces):
+        t_a, t_b = layout.get(state, "t", i, 0), layout.get(state, "t", i, 1)
+        if interface.kind == "contact":
+            stresses[i] = np.where(psi_of[i] > 0, 0.5 * (t_a + t_b), 0.0)
+        else:
+            stresses[i] = 0.5 * (t_b - t_a)
+    return stresses
+
+
+def _write_results(problem, loop, out_dir):
+    """Interface stresses and forces of the converged state; return (summary entries, the
+    contact points' x1 and normal stresses)."""
+    layout = StateLayout(problem.interfaces)
+    state = loop.state
+    stresses = interface_stresses(layout, state, loop.psi)
+    contact_rows, bond_rows, trace_rows = [], [], []
+    for i, interface in enumerate(problem.interfaces):
+        where = {"interface": [interface.name] * interface.size,
+                 "x1": interface.position[:, 0], "x2": interface.position[:, 1], "s": interface.s}
+        u_a, u_b = layout.get(state, "u", i, 0), layout.get(state, "u", i, 1)
+        if interface.kind == "contact":
+            contact_rows.append({**where, "sigma_n": stresses[i]})
+            trace_rows.append({**where, "a_t": np.full(interface.size, np.nan), "a_n": u_a,
+                               "b_t": np.full(interface.size, np.nan), "b_n": u_b})
+        else:
+            bond_rows.append({**where, "sigma_n": stresses[i][1], "sigma_t": stresses[i][0]})
+            trace_rows.append({**where, "a_t": u_a[0], "a_n": u_a[1], "b_t": u_b[0], "b_n": u_b[1]})
+    where = ("interface", "x1", "x2", "s")
+    write_csv(os.path.join(out_dir, "contact.csv"), _stack(contact_rows, where + ("sigma_n",)))
+    write_csv(os.path.join(out_dir, "interface.csv"),
+              _stack(bond_rows, where + ("sigma_n", "sigma_t")))
+    write_csv(os.path.join(out_dir, "traces.csv"),
+              _stack(trace_rows, where + ("a_t", "a_n", "b_t", "b_n")))
+    for name, subdomain in problem.subdomains.items():
+        if subdomain.kind == "shell":
+            write_shell_fields(os.path.join(out_dir, f"{name}_fields.csv"), subdomain.plan,
+                               os.path.join(out_dir, f"{name}.vtu"))
+    write_collection(os.path.join(out_dir, RUN_COLLECTION),
+                     [f"{name}.vtu" for name in problem.subdomains
+                      if os.path.exists(os.path.join(out_dir, f"{name}.vtu"))])
+
+    indenter = read_reactions(os.path.join(out_dir, "indenter_reactions.txt"))
+    base = read_reactions(os.path.join(out_dir, "base_reactions.txt"))
+    per_interface, contact_force, interface_force = {}, 0.0, 0.0
+    for i, interface in enumerate(problem.interfaces):
+        if interface.kind == "contact":
+            force = -interface.integrate(stresses[i] * interface.normal[:, 1])
+            contact_force += force
+            peak = float(np.min(stresses[i]))
+        else:
+            sigma_t, sigma_n = stresses[i]
+            force = -interface.integrate(sigma_n * interface.normal[:, 1]
+                                         + sigma_t * interface.tangent[:, 1])
+            interface_force += force
+            peak = float(np.min(sigma_n))
+        per_interface[interface.name] = {"force": force, "peak_normal_stress": peak}
+    contact = [stresses[i] for i in layout.contact_indices]
+    x_contact = np.concatenate([problem.interfaces[i].position[:, 0] for i in layout.contact_indices])
+    sigma_contact = np.concatenate(contact)
+    bonds = [stresses[i][1] for i, f in enumerate(problem.interfaces) if f.kind == "bond"]
+    scene = problem.scene
+    zones = contact_zones(x_contact, sigma_contact)
+    return ({
+        "answers": _answers(problem, contact_rows, bond_rows, out_dir),
+        "contact_force": contact_force,
+        "interface_force": interface_force,
+        "stamp_reaction": -indenter[LABELS["Stamp"]][1],
+        "base_reaction": base[LABELS["Clamped"]][1],
+        "peak_contact_stress": float(np.min(sigma_contact)),
+        "peak_interface_stress": float(np.min(np.concatenate(bonds))) if bonds else None,
+        "contact_half_width": _half_width(scene, x_contact, sigma_contact, zones),
+        "contact_zones": [list(zone) for zone in zones],
+        "descent": loop.descent,
+        "total_force": (2.0 if scene.symmetric else 1.0) * contact_force,
+        "interfaces": per_interface,
+        # the faces' normals over the contact: the pairing assumes them opposite
+        "normal_mismatch_deg": math.degrees(max(
+            (float(np.max(problem.interfaces[i].mismatch[stresses[i] < 0]))
+             for i in layout.contact_indices if np.any(stresses[i] < 0)), default=0.0)),
+    }, x_contact, sigma_contact)
+
+
+def _answers(problem, contact_rows, bond_rows, out_dir):
+    """orchestrate/run/answers.py's values of the run: the contact, every bond (by its
+    interface's name) and every patch (by its subdomain's name)."""
+    scene = problem.scene
+    contact = _stack(contact_rows, ("x1", "x2", "sigma_n"))
+    bonds = {row["interface"][0]: answers.bond_answers(scene, row["x1"], row["x2"],
+                                                       row["sigma_n"], row["sigma_t"])
+             for row in bond_rows}
+    coatings = {}
+    for name, subdomain in problem.subdomains.items():
+        if not name.startswith("coating"):
+            continue
+        patch = scene.coatings[int(name[len("coating"):]) - 1]
+        if subdomain.kind == "shell":
+            fields = pd.read_csv(os.path.join(out_dir, f"{name}_fields.csv"))
+            coatings[name] = answers.shell_answers(scene, patch, fields)
+        else:
+            nodes = pd.read_csv(os.path.join(out_dir, f"{name}.csv"))
+            coatings[name] = answers.coating_answers(scene, nodes)
+    return {"contact": answers.contact_answers(scene, contact["x1"], contact["x2"],
+                                               contact["sigma_n"]),
+            "bonds": bonds, "coatings": coatings}
+
+
+def _half_width(scene, x, sigma, zones):
+    """A half model: the end of the zone on the axis; a full model: half the length of
+    the zone under the indenter's lowest point."""
+    if scene.symmetric:
+        return contact_half_width(x, sigma)
+    for start, end in zones:
+        if start <= scene.indenter.centre <= end:
+            return 0.5 * (end - start)
+    return 0.0
+
+
+def _stack(rows, columns):
+    """One table of the given columns from tables that have them."""
+    return {name: np.concatenate([np.asarray(r[name]) for r in rows]) if rows else []
+            for name in columns}

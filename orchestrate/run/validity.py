@@ -1,0 +1,284 @@
+"""Where a run leaves what the tool models: warnings, each with the measured value and
+the limit it passed.
+
+The model is linear elasticity with small displacements and strains, contact paired
+along the indenter face's normal (the faces close, n1 ~ -n2), on the discretisation the
+settings ask for, with a coating model whose error may have been estimated
+(orchestrate/model/model_choice.py). A run can converge, exactly, to an answer of that model
+while the scene leaves it: a load that pushes the contact to a body's edge, moduli in
+GPa under an MPa label, a coating as thick as its base. Each such case is a warning in
+summary.json's "warnings" (code, message, value, limit), printed at the end of a run and
+a column of a sweep's table; ``--strict`` makes them an exit status of their own
+(orchestrate/errors.py, EXIT_WARNINGS).
+
+    contact_at_edge        the contact reaches the end of the indenter's face or of the
+                           base's top face: what lies beyond was not modelled
+    large_descent          the stamp's descent over the smaller body's depth
+    large_strain           the largest stress on the interfaces and in the coatings over
+                           the modulus of the body it acts on: a strain
+    stress_near_modulus    the same ratio near 1: the moduli and the loads are likely in
+                           different units
+    normal_mismatch        the largest angle between the paired faces' normals over the
+                           contact: the pairing's error grows with its square
+    coarse_contact         fewer interface elements across a contact zone than resolve
+                           its pressure
+    coarse_mesh            ... across the contact predicted before any work (the a priori
+                           half-width), or across a narrow patch's part of it
+    model_error            a coating model chosen by the user whose estimated error
+                           exceeds the tolerance (settings.model_tolerance)
+    model_uncalibrated     ... whose error the estimate does not cover (its reason)
+    thick_coating          a coating thicker than a share of its base's depth: not a thin
+                           coating on a body
+    singular_contact_peak  the largest contact pressure at a patch's end: a step under
+                           the indenter, singular, its value mesh-dependent
+
+Values are computed in the solver's b and E and said in the scene's units.
+"""
+
+import numpy as np
+
+from orchestrate.model.model_choice import contact_half_width, estimated_errors, not_estimated
+from orchestrate.model.scene import SHELL_MODELS
+
+STRAIN_LIMIT = 0.02          # linear elasticity drops the strain's quadratic term, about half
+                             # the strain relative to it: 1 % at 2 % (model_tolerance's 1 %)
+MODULUS_SHARE = 0.1          # a stress of a tenth of the modulus: a strain of 10 %
+DESCENT_LIMIT = 0.01         # the descent over the smaller body's depth (small displacements)
+MISMATCH_LIMIT_DEG = 10.0    # the pairing's error ~ (1 - cos): 1.5 % at 10 degrees
+ELEMENTS_ACROSS = 10         # interface elements across a contact zone (its whole width)
+COATING_SHARE = 0.25         # a coating's thickness over its base's depth
+
+
+def _warning(code, message, value=None, limit=None):
+    """A warning: its code, its text, the value measured and the limit it passed (None
+    where the warning is not a number's)."""
+    return {"code": code, "message": message,
+            "value": None if value is None else float(value),
+            "limit": None if limit is None else float(limit)}
+
+
+def base_depth(base):
+    """How deep the base is below its face: a block's height, a roller's rim."""
+    return base.height if base.shape == "block" else base.radius - base.shaft_radius
+
+
+def mesh_warnings(problem, say):
+    """The warnings of a mesh too coarse for the contact the scene will make, before any
+    work: fewer than ELEMENTS_ACROSS interface elements across the a priori contact width
+    (orchestrate/model/model_choice.py's estimate; a half model's mirrored), or across a
+    patch's part of it (a pad narrower than the contact carries its own pressure). The
+    limit is studies/resolution.py's study: at 10 elements across, the peak pressure
+    within 0.2 % and the coating's largest stress within 1 % of a mesh ten times finer."""
+    scene = problem.scene
+    a = contact_half_width(scene)
+    contacts = [i for i in problem.interfaces if i.kind == "contact"]
+    if a == 0 or not contacts:
+        return []
+    centre = 0.0 if scene.symmetric else scene.indenter.centre
+    low, high = centre - a, centre + a
+    x1 = np.concatenate([i.position[:, 0] for i in contacts])
+    warnings = []
+
+    def mirrored(start, end):          # a half model's stretch from the axis is twice as wide
+        return (end - start) * (2.0 if scene.symmetric and start <= 0.0 else 1.0)
+    stretches = [("the predicted contact", low, high)]
+    stretches += [(f"coating[{n}]'s part of it", max(low, c.start), min(high, c.end))
+                  for n, c in enumerate(scene.coatings, start=1)
+                  if min(high, c.end) > max(low, c.start) and mirrored(c.start, c.end) < 2 * a]
+    for what, start, end in stretches:
+        element = _element_length(x1, start, end)
+        across = (end - start if what == "the predicted contact" else mirrored(start, end)) / element
+        if across < ELEMENTS_ACROSS:
+            warnings.append(_warning(
+                "coarse_mesh", f"{what}, [{say.length(start)}, {say.length(end)}] (a priori "
+                f"half-width {say.length(a)}), is {across:.3g} interface elements across "
+                f"(limit {ELEMENTS_ACROSS}; elements of {say.length(element)}): a smaller "
+                "element_size (a length with its unit will do) or a higher mesh_level",
+                across, ELEMENTS_ACROSS))
+    return warnings
+
+
+def _element_length(x1, start, end):
+    """The interface elements' length over [start, end] (at least the points nearest
+    to it): the points are the P2 elements' ends and midpoints, two to an element."""
+    near = np.sort(x1[(x1 >= start - 1e-12) & (x1 <= end + 1e-12)])
+    if len(near) < 3:
+        near = np.sort(x1[np.argsort(np.abs(x1 - 0.5 * (start + end)))[:3]])
+    return 2.0 * float(np.median(np.diff(near)))
+
+
+def scene_warnings(scene, given, settings, say):
+    """The warnings known before any work, from the ``scene`` (its models chosen) and the
+    scene as ``given`` (which patches the user modelled, not "auto"), both in the scene's
+    units (the estimate's quantities are ratios: any consistent units do)."""
+    warnings = []
+    depth = base_depth(scene.base)
+    a = None                               # the contact half-width, once needed
+    for number, (coating, asked) in enumerate(zip(scene.coatings, given.coatings), start=1):
+        share = coating.thickness / depth
+        if share > COATING_SHARE:
+            warnings.append(_warning(
+                "thick_coating", f"coating[{number}] is {100 * share:.3g} % as thick as its "
+                f"base is deep ({say.units.length}: {coating.thickness:.4g} against "
+                f"{depth:.4g}; limit {100 * COATING_SHARE:g} %): not a thin coating on a "
+                "body; the base's clamping acts through it", share, COATING_SHARE))
+        if asked.model not in SHELL_MODELS:
+            continue
+        a = contact_half_width(scene) if a is None else a
+        reason = not_estimated(scene, coating, a)
+        if reason:
+            warnings.append(_warning(
+                "model_uncalibrated", f"coating[{number}] is modelled as a {coating.model}, "
+                f"whose error the estimate does not cover here ({reason}, in "
+                f"{say.units.length}); model = \"elastic\" or \"auto\" is exact for the "
+                "coating"))
+            continue
+        error = max(estimated_errors(scene, coating, a)[coating.model].values())
+        if error > settings.model_tolerance:
+            warnings.append(_warning(
+                "model_error", f"coating[{number}] is modelled as a {coating.model}, whose "
+                f"estimated error of the peak contact and bond stresses is {100 * error:.3g} %"
+                f" (tolerance {100 * settings.model_tolerance:g} %, settings.model_tolerance);"
+                " model = \"auto\" chooses one within it", error, settings.model_tolerance))
+    return warnings
+
+
+class Say:
+    """Numbers of the solver (b, E) as text in the scene's units."""
+
+    def __init__(self, scales, units):
+        self.scales, self.units = scales, units
+
+    def length(self, value):
+        return f"{self.in_units(value):.4g} {self.units.length}"
+
+    def in_units(self, length):
+        return length * self.scales.length
+
+    def stress(self, value):
+        return f"{value * self.scales.stress:.4g} {self.units.stress}"
+
+
+def run_warnings(problem, results, contact_x1, contact_stress, say):
+    """The warnings of a converged run: ``problem`` in b and E, ``results`` its summary
+    entries (solve.py's _write_results, in b and E), the contact points' x1 and normal
+    stresses, ``say`` a Say."""
+    scene = problem.scene
+    warnings = []
+    warnings += _edge_warnings(problem, contact_x1[contact_stress < 0], say)
+    warnings += _strain_warnings(scene, results, say)
+    depth = min(scene.indenter.height, base_depth(scene.base))
+    descent = abs(results["descent"] or 0.0)
+    if descent > DESCENT_LIMIT * depth:
+        warnings.append(_warning(
+            "large_descent", f"the stamp's descent, {say.length(descent)}, is "
+            f"{100 * descent / depth:.3g} % of the smaller body's depth {say.length(depth)} "
+            f"(limit {100 * DESCENT_LIMIT:g} %): displacements are not small", descent / depth,
+            DESCENT_LIMIT))
+    mismatch = results["normal_mismatch_deg"]
+    if mismatch > MISMATCH_LIMIT_DEG:
+        warnings.append(_warning(
+            "normal_mismatch", f"the paired faces' normals differ by up to {mismatch:.3g} "
+            f"degrees over the contact (limit {MISMATCH_LIMIT_DEG:g}): the contact pairs "
+            "points along the indenter's normal, assuming the faces close", mismatch,
+            MISMATCH_LIMIT_DEG))
+    warnings += _resolution_warnings(contact_x1, problem.scene.symmetric, results, say)
+    contact = results["answers"]["contact"]
+    away, ends = contact.get("peak_pressure"), contact.get("at_patch_ends", {}).get("peak_pressure")
+    if ends and (not away or ends["value"] > away["value"]):
+        warnings.append(_warning(
+            "singular_contact_peak", f"the largest contact pressure, {say.stress(ends['value'])}"
+            f" at x1 = {say.length(ends['x1'])}, is at a patch end: the indenter presses on "
+            "the step of the patch's edge, a singular, mesh-dependent value; away from the "
+            f"ends the peak is {say.stress(away['value']) if away else 'none'}",
+            ends["value"] / away["value"] if away else None, 1.0 if away else None))
+    return warnings
+
+
+def _face_ends(scene):
+    """x1 of the ends of the stretch of the indenter's face over the base (a half model:
+    the symmetry axis is no end, None)."""
+    indenter, base = scene.indenter, scene.base
+    high = min(indenter.centre + indenter.width, base.top)
+    low = None if scene.symmetric else max(indenter.centre - indenter.width, -base.top)
+    return low, high
+
+
+def _edge_warnings(problem, pressed, say):
+    """``pressed``: x1 of every contact point under pressure."""
+    if not len(pressed):
+        return []
+    low, high = _face_ends(problem.scene)
+    warnings = []
+    for end, reached in ((low, pressed.min()), (high, pressed.max())):
+        if end is not None and abs(reached - end) <= 1e-9 * (1.0 + abs(end)):
+            warnings.append(_warning(
+                "contact_at_edge", f"the contact reaches the end of a face at x1 = "
+                f"{say.length(end)}: the bodies beyond it, and the contact there, are not "
+                "modelled (larger bodies, or a smaller load)", say.in_units(reached),
+                say.in_units(end)))
+    return warnings
+
+
+def _strain_warnings(scene, results, say):
+    """The largest stress away from the patches' ends over the modulus of the body it
+    acts on: the contact pressure over the softer of the indenter and what it presses, a
+    bond's stresses over the softer of coating and base, a coating's over its own."""
+    found = []                                         # (ratio, what)
+    softest_pressed = min([scene.base.E] + [c.E for c in scene.coatings])
+    for extreme in _extremes(results["answers"]["contact"]):
+        found.append((extreme["value"] / min(scene.indenter.E, softest_pressed),
+                      f"the contact pressure {say.stress(extreme['value'])}"))
+    for name, values in results["answers"]["bonds"].items():
+        coating = scene.coatings[int(name.rsplit("coating", 1)[1]) - 1]
+        for extreme in _extremes(values):
+            found.append((abs(extreme["value"]) / min(coating.E, scene.base.E),
+                          f"{name}'s stress {say.stress(extreme['value'])}"))
+    for name, values in results["answers"]["coatings"].items():
+        coating = scene.coatings[int(name[len("coating"):]) - 1]
+        for extreme in _extremes(values):
+            found.append((abs(extreme["value"]) / coating.E,
+                          f"{name}'s stress {say.stress(extreme['value'])}"))
+    if not found:
+        return []
+    ratio, what = max(found, key=lambda item: item[0])
+    warnings = []
+    if ratio > STRAIN_LIMIT:
+        warnings.append(_warning(
+            "large_strain", f"{what} is {100 * ratio:.3g} % of the modulus of the body it "
+            f"acts on (limit {100 * STRAIN_LIMIT:g} %): strains are not small, and linear "
+            "elasticity's error is of their size", ratio, STRAIN_LIMIT))
+    if ratio > MODULUS_SHARE:
+        warnings.append(_warning(
+            "stress_near_modulus", f"{what} is {100 * ratio:.3g} % of the modulus of the "
+            f"body it acts on (limit {100 * MODULUS_SHARE:g} %): are the moduli and the load "
+            "in the units the scene says?", ratio, MODULUS_SHARE))
+    return warnings
+
+
+def _extremes(values):
+    """Every extreme of an answer's group away from the patches' ends (within them the
+    stresses are singular: they grow with the mesh, whatever the load)."""
+    return [extreme for quantity, extreme in values.items()
+            if quantity != "at_patch_ends" and extreme]
+
+
+def _resolution_warnings(x1, symmetric, results, say):
+    """Contact zones with fewer than ELEMENTS_ACROSS interface elements across them (a
+    zone from a half model's axis: across its mirror image too). The interfaces' points
+    ``x1`` are their P2 elements' ends and midpoints: an element is two point spacings."""
+    if not len(x1):
+        return []
+    warnings = []
+    for start, end in results["contact_zones"]:
+        width = (end - start) * (2.0 if symmetric and start <= 0.0 else 1.0)
+        element = _element_length(x1, start, end)
+        across = width / element if element > 0 else 0.0
+        if across < ELEMENTS_ACROSS:
+            warnings.append(_warning(
+                "coarse_contact", f"the contact zone [{say.length(start)}, "
+                f"{say.length(end)}] is {across:.3g} interface elements across "
+                f"(limit {ELEMENTS_ACROSS}; elements of {say.length(element)}): its pressure "
+                "is not resolved; a smaller element_size (it takes a length with its unit) "
+                "or a higher mesh_level", across, ELEMENTS_ACROSS))
+    return warnings

@@ -1,0 +1,354 @@
+"""The subdomain workers of a run and the files they read.
+
+Every body (the indenter, the base, a 2D coating patch) runs freefem/body.edp and every
+shell patch freefem/shell.edp, each on its own mesh or mid-line and sides file
+(orchestrate/workers/exchange.py). Within a Robin iteration the solves are independent: every
+request is written before any reply is read, so the workers compute at the same time.
+The workers come from a Session (orchestrate/workers/session.py), which may have kept them from
+an earlier scene; a kept worker's solves become evaluations of its Robin-to-trace map
+(orchestrate/workers/robin_map.py).
+"""
+
+import os
+import time
+
+from orchestrate.errors import system_failure
+from orchestrate.faults import checkpoint
+from orchestrate.workers.exchange import parse_reply, reply_count, request_arrays, write_sides
+from orchestrate.mesh.meshes import coating_mesh, write_body_mesh, write_medit
+from orchestrate.files.outputs import check_written, write_body_fields
+from orchestrate.mesh.body_plans import BodyPlan
+from orchestrate.workers.robin_map import check, receive_map, send_map_request
+from orchestrate.workers.session import body_fingerprint, files_fingerprint
+from orchestrate.workers.worker import CMD_SOLVE
+
+
+def write_inputs(problem, workdir):
+    """Meshes, shell nodes and sides files of every subdomain, in ``workdir``; returns
+    {name: {"mesh" or "nodes": path, "sides": path, "geometry": (fingerprint of what
+    they hold, the origin it is taken from)}} (orchestrate/workers/session.py)."""
+    try:
+        return _write_inputs(problem, workdir)
+    except OSError as error:
+        raise system_failure(error, "writing the meshes and interface files") from None
+
+
+def _write_inputs(problem, workdir):
+    files = {}
+    for name, subdomain in problem.subdomains.items():
+        files[name] = {"sides": os.path.join(workdir, f"{name}.sides")}
+        sides = [(problem.interfaces[i], problem.interfaces[i].sides[k])
+                 for i, k in problem.sides_of(name)]
+        write_sides(files[name]["sides"], sides)
+        plan = subdomain.plan
+        if subdomain.kind == "body":
+            files[name]["mesh"] = os.path.join(workdir, f"{name}.mesh")
+            if isinstance(plan, BodyPlan):
+                mesh = write_body_mesh(plan, files[name]["mesh"])
+            else:
+                mesh = coating_mesh(plan)
+                write_medit(mesh, files[name]["mesh"])
+            files[name]["geometry"] = body_fingerprint(mesh, sides)
+        else:
+            files[name]["nodes"] = os.path.join(workdir, f"{name}_nodes.txt")
+            with open(files[name]["nodes"], "w") as out:
+                out.write(f"{len(plan.nodes)}\n" + "\n".join(map(repr, plan.nodes.tolist())) + "\n")
+            files[name]["geometry"] = files_fingerprint([files[name]["nodes"],
+                                                         files[name]["sides"]])
+    return files
+
+
+def shell_numbers(subdomain):
+    """A shell's numbers as its FreeFEM scripts take them: E, nu, h2, k', curvature,
+    whether it has thickness stretch, whether its start is on the symmetry axis."""
+    plan = subdomain.plan
+    return [subdomain.E, subdomain.nu, plan.thickness, plan.shear_factor, plan.curvature,
+            int(plan.thickness_stretch), int(plan.symmetric_start)]
+
+
+def worker_arguments(subdomain, files):
+    """The command-line arguments of a subdomain's worker script (body.edp, shell.edp)."""
+    if subdomain.kind == "body":
+        return ["-mesh", files["mesh"], "-E", subdomain.E, "-nu", subdomain.nu,
+                "-sides", files["sides"]]
+    E, nu, h2, kshear, curvature, thickness_stretch, symmetric = shell_numbers(subdomain)
+    return ["-nodes", files["nodes"], "-E", E, "-nu", nu, "-h2", h2, "-kshear", kshear,
+            "-curvature", curvature, "-stretch", thickness_stretch, "-symmetric", symmetric,
+            "-sides", files["sides"]]
+
+
+def load_arguments(problem):
+    """The stamp's load for the indenter's worker: its descent, or its force."""
+    scene = problem.scene
+    if scene.load.force is not None:
+        return ["-force", scene.half_force]
+    return ["-descent", scene.load.displacement]
+
+
+# Probing a map costs one back-substitution per interface unknown, in-process, about 0.4
+# of what a Robin iteration of the loop costs a worker of the same size; the loop took
+# 100-160 iterations on the example scenes with all subdomains at once (68-98 since the
+# coatings are solved after the bodies: single runs then break even, a session's kept
+# maps still pay). So the maps pay while every new worker has at
+# most this many interface unknowns, weighted by its dofs over the largest worker's
+# (Subdomains._maps_pay; `python -m studies.bench_direct` times both ways).
+MAP_UNKNOWNS = 250
+# On a mesh fine enough for two levels (mesh level 2 and finer) "auto" and "two-level"
+# probe no map, not even a kept worker's: iterated with a coarse correction a scene takes
+# 20-30 Robin iterations, while the maps of the indenter and the base cost 10 s at mesh
+# level 3, and a new indenter (another coating thickness) 5 s, against 2.5 s for a whole
+# scene with kept workers.
+
+# Arguments that name a file: the worker's identity is the file's content (its geometry).
+_FILE_ARGUMENTS = {"-mesh", "-nodes", "-sides"}
+
+
+class Subdomains:
+    """Every subdomain of a run as a persistent FreeFEM worker, taken from ``session``.
+
+    For the active-set loop (problem.settings), a worker that serves its second scene
+    gives its Robin-to-trace map (robin_map.py), which stands in for its solves while the
+    Robin coefficients are the map's (that loop's never change). ``inner_solve``: with
+    "direct", every new worker gives its map too, and with every map known the loop
+    solves each contact set's fixed point directly (robin_maps); "auto" does so where
+    the maps pay (_maps_pay); "iterate" never. On a mesh fine enough for two levels,
+    "auto" and "two-level" use no map at all, nor does a fresh process per solve."""
+
+    def __init__(self, problem, files, session, output_dir):
+        self.problem = problem
+        self.session = session
+        settings = problem.settings
+        inner_solve = settings.inner_solve
+        self.use_maps = (settings.method != "paper" and settings.workers != "fresh"
+                         and (inner_solve == "direct" or not settings.two_levels))
+        self.sides = {name: problem.sides_of(name) for name in problem.subdomains}
+        self.components = {name: [problem.interfaces[i].components for i, _ in self.sides[name]]
+                           for name in problem.subdomains}
+        self.specs, self.output_prefix, self.keys, self.origins = {}, {}, {}, {}
+        for name, subdomain in problem.subdomains.items():
+            script = "body.edp" if subdomain.kind == "body" else "shell.edp"
+            self.output_prefix[name] = os.path.join(output_dir, name)
+            arguments = worker_arguments(subdomain, files[name])
+            if subdomain.stamp:
+                arguments += load_arguments(problem)
+            self.specs[name] = (script, arguments)
+            geometry, self.origins[name] = files[name]["geometry"]
+            numbers = [str(value) for flag, value in zip(arguments[::2], arguments[1::2])
+                       if flag not in _FILE_ARGUMENTS]
+            key = (script, geometry, tuple(arguments[::2]), tuple(numbers))
+            # equal patches of one scene (a shell's files hold no place) get a worker each
+            self.keys[name] = key + (sum(k[:-1] == key for k in self.keys.values()),)
+        self.unknowns = {name: sum(problem.interfaces[i].size * problem.interfaces[i].components
+                                   for i, _ in self.sides[name]) for name in problem.subdomains}
+        self.entries = {}
+        self.last_requests, self.mapped = {}, {}
+        self._pending = {}           # map requests sent and not yet answered, by name
+        self.dofs = self._start()
+        self.direct = self.use_maps and inner_solve in ("auto", "direct")
+        self.map_new = self.direct and (inner_solve == "direct" or self._maps_pay())
+
+    def solve_directly(self):
+        """From now on every worker gives its map, and the loop solves each contact set
+        directly (what "direct" does): an iterated inner solve that failed falls back
+        to it (orchestrate/run/solve.py)."""
+        self.use_maps = self.direct = self.map_new = True
+
+    def _maps_pay(self):
+        """Whether probing the new workers' maps costs less than the Robin iterations a
+        direct solve of each contact set saves (MAP_UNKNOWNS; the workers work side by
+        side, a back-substitution costs about its worker's dofs)."""
+        largest = max(self.dofs.values())
+        return all(self.unknowns[name] * self.dofs[name] <= MAP_UNKNOWNS * largest
+                   for name, entry in self.entries.items() if entry.scenes == 1)
+
+    def _start(self, names=None):
+        """Take the workers of ``names`` (None: every one; a new one assembles and
+        factorises at once); return their dofs."""
+        timeout = self.problem.settings.worker_timeout
+        try:
+            for name in (self.specs if names is None else names):
+                script, arguments = self.specs[name]
+                self.entries[name] = self.session.take(name, script, arguments, self.keys[name],
+                                                       self.origins[name], timeout)
+            return {name: self.session.ready(entry) for name, entry in self.entries.items()}
+        except OSError as error:
+            self._drop()
+            raise system_failure(error, "starting the FreeFEM workers") from None
+        except BaseException:
+            self._drop()
+            raise
+
+    @property
+    def kept(self):
+        """The subdomains whose worker an earlier scene started."""
+        return [name for name, entry in self.entries.items() if entry.scenes > 1]
+
+    def solve(self, data, names=None):
+        """One independent solve per subdomain of ``names`` (None: every one).
+
+        ``data``: {(interface index, side): (alpha, g)} (robin.robin_data). Returns the
+        traces {(interface index, side): trace} of their sides, the timings (each
+        worker's CPU seconds for the request, "back_" + name for its back-substitution
+        alone, and "wait", the driver's wall time from the first request sent to the last
+        reply) and the stamp's descent (None unless the stamp's body solved)."""
+        start = time.perf_counter()
+        names = list(self.entries) if names is None else names
+        requests = self._requests(data, names)
+        self._ask_maps(requests)
+        for name in names:
+            entry = self.entries[name]
+            self.mapped[name] = (entry.robin_map is not None
+                                 and entry.robin_map.serves(requests[name]))
+            if not self.mapped[name]:
+                entry.worker.send(CMD_SOLVE, requests[name])
+        self.last_requests.update(requests)
+        traces, seconds, descent = {}, {}, None
+        for name in names:
+            entry = self.entries[name]
+            if self.mapped[name]:
+                arrays = entry.robin_map.reply(requests[name])
+            else:
+                arrays = entry.worker.receive_arrays(reply_count(self.problem, self.sides[name]))
+            received, info = parse_reply(self.problem, self.sides[name], arrays)
+            traces.update(received)
+            seconds[name], seconds[f"back_{name}"] = float(info[0]), float(info[1])
+            if self.problem.subdomains[name].stamp:
+                descent = float(info[2])
+        seconds["wait"] = time.perf_counter() - start
+        return traces, seconds, descent
+
+    def robin_maps(self, data):
+        """Every subdomain's Robin map at the coefficients of ``data`` (robin.robin_data),
+        asked now of the workers that have none; None unless every worker is to be
+        mapped."""
+        if not self.solves_directly:
+            return None
+        requests = self._requests(data)
+        self._ask_maps(requests)
+        maps = {name: entry.robin_map for name, entry in self.entries.items()}
+        return maps if all(maps[name].serves(requests[name]) for name in maps) else None
+
+    def request_maps(self, data):
+        """Ask for the maps ``robin_maps(data)`` returns, and return at once: the workers
+        probe while the caller works."""
+        if self.solves_directly:
+            self._send_map_requests(self._requests(data))
+
+    def _requests(self, data, names=None):
+        return {name: request_arrays(self.sides[name], data)
+                for name in (self.entries if names is None else names)}
+
+    @property
+    def solves_directly(self):
+        """Whether every worker gives its map, so the loop solves each contact set
+        directly."""
+        return self.direct and all(self._to_map(entry) for entry in self.entries.values())
+
+    def _to_map(self, entry):
+        return self.map_new or entry.scenes >= 2
+
+    def _ask_maps(self, requests):
+        """The maps of the workers that serve their second scene (every worker's, with
+        ``map_new``), all asked at once."""
+        if not self.use_maps:
+            return
+        self._send_map_requests(requests)
+        for name in list(self._pending):
+            entry = self.entries[name]
+            entry.robin_map = receive_map(entry.worker, self._pending.pop(name),
+                                          self.components[name])
+
+    def _send_map_requests(self, requests):
+        for name in requests:
+            entry = self.entries[name]
+            if entry.robin_map is None and name not in self._pending and self._to_map(entry):
+                send_map_request(entry.worker, requests[name])
+                self._pending[name] = requests[name]
+
+    def kill_probing(self):
+        """Kill the workers still probing a map nobody will read (they would not hear a
+        request to stop until their answer was read)."""
+        for name in self._pending:
+            self.entries[name].worker.kill()
+        self._pending = {}
+
+    def write_outputs(self):
+        """Ask every worker to write its fields (CSV) and reactions next to its output
+        prefix, check that every file is whole, and write each body's VTU from them; the
+        indenter's and base's fields only with Settings.body_fields (a coating's answers
+        read its fields). A worker whose last solve was its map's solves for real first
+        (its fields), and its traces must agree with the map's."""
+        real = [name for name, mapped in self.mapped.items() if mapped]
+        for name in real:
+            self.entries[name].worker.send(CMD_SOLVE, self.last_requests[name])
+        for name in real:
+            entry = self.entries[name]
+            reply = entry.worker.receive_arrays(reply_count(self.problem, self.sides[name]))
+            check(entry.worker.name, entry.robin_map, self.last_requests[name], reply)
+        fields = {name: subdomain.coating or self.problem.settings.body_fields
+                  for name, subdomain in self.problem.subdomains.items()}
+        for name, entry in self.entries.items():
+            entry.worker.send_output(self.output_prefix[name],
+                                     self.origins[name] - entry.origin, fields[name])
+        checkpoint("output")
+        for name, entry in self.entries.items():
+            written, = entry.worker.receive_arrays(1)
+            kind = self.problem.subdomains[name].kind
+            check_written(self.output_prefix[name], kind, written, fields[name])
+            if kind == "body" and fields[name]:
+                write_body_fields(self.output_prefix[name])
+
+    def _drop(self):
+        """Stop this run's workers (a failed run leaves none to the next)."""
+        self.kill_probing()
+        for name in list(self.entries):
+            self.session.drop(self.keys[name])
+        self.entries = {}
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, exc_type, *exc):
+        if exc_type is None:
+            self.session.keep_only({self.keys[name] for name in self.entries})
+        else:
+            self._drop()
+
+
+class FreshProcessSubdomains(Subdomains):
+    """The naive baseline: a fresh FreeFEM process per subdomain solve, which assembles
+    and factorises its matrix every time. Kept to measure what persistent workers save
+    (``--workers fresh``); the answers are the same."""
+
+    def __init__(self, *arguments):
+        super().__init__(*arguments)
+        self._drop()
+        self.last_data = {}          # the data of each subdomain's last solve
+
+    def solve(self, data, names=None):
+        start = time.perf_counter()
+        names = list(self.specs) if names is None else names
+        self._start(names)
+        try:
+            traces, seconds, descent = super().solve(data, names)
+        finally:
+            self._drop()
+        self.last_data.update((name, data) for name in names)
+        seconds["wait"] = time.perf_counter() - start
+        return traces, seconds, descent
+
+    def write_outputs(self):
+        self._start()
+        try:
+            for name, data in self.last_data.items():
+                super().solve(data, [name])
+            super().write_outputs()
+        finally:
+            self._drop()
+
+
+def start_subdomains(problem, settings, files, session, output_dir):
+    """The workers of a run: persistent (default) or a fresh process per solve."""
+    if settings.workers == "fresh":
+        return FreshProcessSubdomains(problem, files, session, output_dir)
+    return Subdomains(problem, files, session, output_dir)

@@ -1,0 +1,214 @@
+"""Persistent FreeFEM workers that answer requests through FIFOs.
+
+A worker script (freefem/body.edp, freefem/shell.edp) assembles and factorises once,
+replies "ready", then loops: read a request, solve, reply. The driver keeps both FIFOs
+open read-write for the worker's whole life, so that the worker's opens never block
+and a reply can be awaited with a timeout while checking that the worker is alive. A
+worker that dies, or says nothing for ``timeout`` seconds, raises ``WorkerError`` with
+the end of its log.
+"""
+
+import ctypes
+import functools
+import os
+import re
+import select
+import signal
+import subprocess
+import time
+
+import numpy as np
+
+from orchestrate.workers import freefem
+from orchestrate.errors import SystemFailure
+
+# Workers run side by side, one per core. FreeFEM links OpenMP, whose idle threads spin:
+# with more than one per worker they take the cores the other workers need (measured at
+# mesh level 3: 25-30 % more time per Robin iteration). One thread each.
+THREADS = {"OMP_NUM_THREADS": "1"}
+
+CMD_STOP, CMD_SOLVE, CMD_OUTPUT, CMD_MAP = 0, 1, 2, 3   # as in freefem/exchange.idp
+_POLL_SECONDS = 0.05
+DEFAULT_TIMEOUT = 600.0    # seconds a worker may take to answer (Settings.worker_timeout)
+
+# what a worker's death by a signal most likely means
+_DEATHS = {signal.SIGXFSZ: "a file size limit was reached (ulimit -f)",
+           signal.SIGKILL: "killed (by a user, or by the kernel for want of memory)",
+           signal.SIGSEGV: "crashed (segmentation fault)",
+           signal.SIGABRT: "aborted"}
+
+
+# What a worker's log says when it ran out of memory: MUMPS's error -13 (its factors could
+# not be allocated), C++'s bad_alloc.
+_OUT_OF_MEMORY = re.compile(r"Mumps seq: number -13|INFOG\(1\)= +-13|bad_alloc")
+
+
+class WorkerError(SystemFailure):
+    """A worker died, timed out or answered something unexpected."""
+
+
+def die_with_parent(parent=None):
+    """Runs in the child (before exec): get SIGKILL when the parent dies, even by
+    SIGKILL. ``parent``: the pid the child was made by; a parent that died before the
+    request took effect is caught by looking again (the kernel's known race)."""
+    PR_SET_PDEATHSIG = 1
+    try:
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    except OSError:
+        pass
+    if parent is not None and os.getppid() != parent:
+        os._exit(1)
+
+
+class Worker:
+    """One FreeFEM process; ``name`` (its subdomain's) names it in messages, ``stem`` (by
+    default the name) its FIFOs and log inside ``workdir``."""
+
+    def __init__(self, name, script, arguments, workdir, timeout=DEFAULT_TIMEOUT, stem=None):
+        self.name = name
+        self.timeout = timeout
+        stem = stem or name
+        self.request_path = os.path.join(workdir, f"{stem}.request")
+        self.reply_path = os.path.join(workdir, f"{stem}.reply")
+        self.log_path = os.path.join(workdir, f"{stem}.log")
+        self.process = None
+        self._request_fd = self._reply_fd = None
+        command = freefem.command(script, [*arguments, "-request", self.request_path,
+                                           "-reply", self.reply_path])
+        try:
+            os.mkfifo(self.request_path)
+            os.mkfifo(self.reply_path)
+            # O_RDWR keeps a reader and a writer on each FIFO: the worker's opens return
+            # at once, and select() sees a reply only when there is one.
+            self._request_fd = os.open(self.request_path, os.O_RDWR)
+            self._reply_fd = os.open(self.reply_path, os.O_RDWR | os.O_NONBLOCK)
+            with open(self.log_path, "w") as log:
+                self.process = subprocess.Popen(
+                    command, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                    env=freefem.environment() | THREADS, start_new_session=True,
+                    preexec_fn=functools.partial(die_with_parent, os.getpid()))
+        except BaseException:
+            self.kill()
+            raise
+
+    # -- messages ---------------------------------------------------------------------
+    def wait_ready(self):
+        """Wait for the worker's set-up (assembly, factorisation); return its dof count."""
+        tokens = self._read_reply().decode().split()
+        if len(tokens) != 2 or tokens[0] != "ready":
+            raise WorkerError(f"worker {self.name} did not start properly: {tokens[:5]}")
+        return int(tokens[1])
+
+    def send(self, command, arrays=()):
+        """Write one request: the command, then each array count-first."""
+        parts = [str(command)]
+        for array in arrays:
+            array = np.asarray(array, dtype=float)
+            parts.append(f"{array.size}\n" + " ".join(map(repr, array.tolist())))
+        self._write(("\n".join(parts) + "\n").encode())
+
+    def send_output(self, prefix, shift=(0.0, 0.0), fields=True):
+        """Ask for the output files under ``prefix``: the fields (unless not ``fields``),
+        the body's coordinates shifted by ``shift`` (the scene's place of a body whose
+        mesh the worker read at another), and a body's reactions."""
+        if "\n" in prefix:
+            raise ValueError(f"an output path cannot hold a line break: {prefix!r}")
+        self._write(f"{CMD_OUTPUT}\n{float(shift[0])!r} {float(shift[1])!r} {int(fields)}\n"
+                    f"{prefix}\n".encode())
+
+    def receive_arrays(self, count):
+        """Read a reply made of ``count`` count-first arrays."""
+        reply = self._read_reply()
+        try:            # every number at once: a map's reply holds tens of thousands
+            values = np.fromstring(reply, sep=" ")
+        except ValueError:
+            raise WorkerError(f"worker {self.name} sent a reply that is not numbers: "
+                              f"{reply[:200]!r}") from None
+        arrays, i = [], 0
+        for _ in range(count):
+            if i >= len(values):
+                raise WorkerError(f"worker {self.name} sent {len(arrays)} of {count} arrays")
+            n = int(values[i])
+            arrays.append(values[i + 1:i + 1 + n])
+            i += 1 + n
+        if i != len(values):
+            raise WorkerError(f"worker {self.name} sent {len(values) - i} unexpected values")
+        return arrays
+
+    def request(self, command, arrays, reply_arrays):
+        self.send(command, arrays)
+        return self.receive_arrays(reply_arrays)
+
+    # -- lifetime -----------------------------------------------------------------------
+    def stop(self, grace=5.0):
+        """Ask the worker to exit; kill it if it does not; release the FIFOs."""
+        try:
+            if self.process is not None and self.process.poll() is None:
+                try:
+                    self._write(f"{CMD_STOP}\n".encode(), timeout=grace)
+                    self.process.wait(timeout=grace)
+                except (WorkerError, subprocess.TimeoutExpired, OSError):
+                    pass
+        finally:
+            self.kill()
+
+    def kill(self):
+        """Kill the worker's process group and remove its FIFOs; safe to call twice."""
+        if self.process is not None and self.process.poll() is None:
+            try:
+                os.killpg(self.process.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            self.process.wait()
+        for attribute in ("_request_fd", "_reply_fd"):
+            fd = getattr(self, attribute)
+            if fd is not None:
+                os.close(fd)
+                setattr(self, attribute, None)
+        for path in (self.request_path, self.reply_path):
+            if os.path.exists(path):
+                os.unlink(path)
+
+    # -- low level ----------------------------------------------------------------------
+    def _check_alive(self):
+        code = self.process.poll()
+        if code is not None:
+            how = (f"died: {_DEATHS.get(-code, signal.Signals(-code).name)}" if code < 0
+                   else f"exited with code {code}")
+            log = freefem.log_tail(self.log_path)
+            if _OUT_OF_MEMORY.search(log):
+                how += " (out of memory: lower --memory-limit's estimate, or coarsen the mesh)"
+            raise WorkerError(f"worker {self.name} {how}:\n" + log)
+
+    def _write(self, data, timeout=None):
+        deadline = time.monotonic() + (timeout or self.timeout)
+        view = memoryview(data)
+        while view:
+            self._check_alive()
+            _, writable, _ = select.select([], [self._request_fd], [], _POLL_SECONDS)
+            if writable:
+                written = os.write(self._request_fd, view[:65536])
+                view = view[written:]
+            elif time.monotonic() > deadline:
+                raise WorkerError(f"worker {self.name} stopped reading its requests")
+
+    def _read_reply(self):
+        """Read until the reply's closing word "end"; return the bytes before it."""
+        start = time.monotonic()
+        chunks = []
+        while True:
+            readable, _, _ = select.select([self._reply_fd], [], [], _POLL_SECONDS)
+            if readable:
+                chunks.append(os.read(self._reply_fd, 1 << 20))
+                tail = b"".join(chunks[-2:]).rstrip()
+                if tail.endswith(b"end"):
+                    break
+            else:
+                self._check_alive()
+                if time.monotonic() - start > self.timeout:
+                    raise WorkerError(f"worker {self.name} gave no answer for "
+                                      f"{self.timeout:g} s (Settings.worker_timeout; a "
+                                      "stopped or overloaded process?):\n"
+                                      + freefem.log_tail(self.log_path))
+        reply = b"".join(chunks).rstrip()
+        return reply[:-len(b"end")]

@@ -1,0 +1,5 @@
+"""Research on the tool, apart from it and not installed with it: the paper's figures and
+claims, benchmarks, the fine reference, and the studies whose tables docs/ quotes. Each
+module runs as ``python -m studies.NAME`` from the repository and writes into results/;
+it uses the tool's public API only (the ``orchestrate`` package and its layers'
+packages, never a module inside them: tests/test_layers.py)."""

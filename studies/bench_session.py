@@ -1,0 +1,96 @@
+"""Benchmark: what workers that outlive a scene save on the figure scenes (not a test).
+
+1. The scenes of studies/sweeps/figures.toml one after the other in this process,
+   each with workers of its own, then all in one Session (orchestrate/workers/session.py): the
+   wall time of each run, its set-up and its loop, and the answers' largest difference.
+2. The sweep itself (2 local jobs, warm starts, each job a session) on all its scenes and
+   on its first FEW: the marginal cost of a scene is the difference over the difference
+   in scenes.
+
+    python -m studies.bench_session     # prints the tables, writes results/session*.csv
+"""
+
+import argparse
+import os
+import tempfile
+import time
+from pathlib import Path
+
+import pandas as pd
+
+from studies.paths import RESULTS_DIR
+from orchestrate.workers.session import Session
+from orchestrate.run.solve import solve
+from orchestrate.sweeps.sweep import load_sweep, named_points, point_scene, run_sweep
+
+SWEEP = Path(__file__).parent / "sweeps" / "figures.toml"
+FEW = 4
+
+
+def one_by_one(points, session):
+    """A row per scene: wall, set-up and loop seconds, iterations, peaks."""
+    rows = []
+    with tempfile.TemporaryDirectory() as out:
+        for k, (name, values) in enumerate(points):
+            scene, settings = point_scene(values, SWEEP.parent)
+            start = time.perf_counter()
+            summary = solve(scene, settings, os.path.join(out, name), session=session)
+            rows.append({"scene": name, "wall_s": time.perf_counter() - start,
+                         "setup_s": summary["setup_time_s"],
+                         "loop_s": summary["time_per_iteration_s"] * summary["iterations"],
+                         "iterations": summary["iterations"],
+                         "inner_solve_used": summary["inner_solve_used"],
+                         "kept": len(summary["workers_kept"]),
+                         "peak_contact_stress": summary["peak_contact_stress"],
+                         "peak_interface_stress": summary["peak_interface_stress"]})
+    return pd.DataFrame(rows)
+
+
+def sweep_seconds(points, out):
+    """Wall seconds of a sweep like the figures' (warm starts, 2 jobs) of ``points``."""
+    def value(v):                              # in TOML
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        return f'"{v}"' if isinstance(v, str) else repr(v)
+    runs = "".join("[[runs]]\n" + "".join(f"{key} = {value(v)}\n" for key, v in values.items())
+                   for _, values in points)
+    path = Path(out) / "sweep.toml"
+    path.write_text(f'name = "bench"\nwarm_start = true\n{runs}')
+    start = time.perf_counter()
+    with open(os.devnull, "w") as quiet:
+        run_sweep(path, out=Path(out) / "sweep", jobs=2, stream=quiet)
+    return time.perf_counter() - start
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default=str(RESULTS_DIR))
+    args = parser.parse_args(argv)
+    points = named_points(load_sweep(SWEEP)[1])
+    alone = one_by_one(points, None)
+    with Session() as session:
+        kept = one_by_one(points, session)
+    both = alone.merge(kept, on="scene", suffixes=("_alone", "_session"))
+    both["peak_difference"] = (both.peak_contact_stress_session / both.peak_contact_stress_alone
+                               - 1).abs()
+    columns = ["scene", "wall_s_alone", "wall_s_session", "setup_s_alone", "setup_s_session",
+               "loop_s_alone", "loop_s_session", "iterations_alone", "kept_session",
+               "peak_difference"]
+    print(both[columns].to_string(index=False, float_format=lambda v: f"{v:.3g}"))
+    print(f"\nmedian wall per scene: {alone.wall_s.median():.3f} s alone, "
+          f"{kept.wall_s.median():.3f} s in a session (ratio "
+          f"{kept.wall_s.median() / alone.wall_s.median():.2f}); largest peak difference "
+          f"{both.peak_difference.max():.1e}")
+    with tempfile.TemporaryDirectory() as few, tempfile.TemporaryDirectory() as every:
+        t_few, t_all = sweep_seconds(points[:FEW], few), sweep_seconds(points, every)
+    marginal = (t_all - t_few) / (len(points) - FEW)
+    sweep = pd.DataFrame([{"scenes": FEW, "wall_s": t_few}, {"scenes": len(points), "wall_s": t_all},
+                          {"scenes": "marginal per scene", "wall_s": marginal}])
+    print("\nthe figure sweep, 2 jobs:\n" + sweep.to_string(index=False))
+    os.makedirs(args.out, exist_ok=True)
+    both.to_csv(os.path.join(args.out, "session.csv"), index=False)
+    sweep.to_csv(os.path.join(args.out, "session_sweep.csv"), index=False)
+
+
+if __name__ == "__main__":
+    main()
