@@ -226,7 +226,7 @@ def _say(text):
 
 
 def _sweep(args, run_done=lambda name=None: None):
-    from orchestrate.sweeps.sweep import run_sweep
+    from orchestrate.sweeps import run_sweep
     try:
         table = run_sweep(args.file, args.out, args.engine, args.jobs, args.scheduler,
                           retry_failed=args.retry_failed, run_done=run_done)

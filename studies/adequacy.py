@@ -7,7 +7,7 @@ the paper's mesh against the mesh-converged 2D coating model):
                   0.49), and 38 development scenes (other heights, moduli, loads, radii,
                   cylinders, patches, a coated roller) on which the estimate's forms were
                   chosen: the map of model error over (h2 / a) x (E2 / E), and the data
-                  model_choice.py's estimate is fitted on (--fit prints its constants)
+                  orchestrate/model/estimate.py's estimate is fitted on (--fit prints its constants)
     held-out      36 scenes neither the forms nor the constants saw: other heights,
                   moduli and Poisson ratios, loads, bases, radii, cylinders (one off
                   centre, a full model), coated rollers (curved coatings), discrete and
@@ -35,12 +35,14 @@ from matplotlib.colors import ListedColormap, LogNorm  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from orchestrate.model import model_choice  # noqa: E402
+from orchestrate.model import estimate  # noqa: E402
+from orchestrate.run import plan  # noqa: E402
 from studies.model_errors import measure_all, with_model  # noqa: E402
 from studies.paths import RESULTS_DIR  # noqa: E402
-from orchestrate.model.scene import Settings, scene_from_dict  # noqa: E402
-from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene  # noqa: E402
-from orchestrate.run.solve import solve  # noqa: E402
+from orchestrate.model import Settings, scene_from_dict  # noqa: E402
+from orchestrate.paths import SCENES_DIR
+from orchestrate.model import apply_overrides, load_scene, paper_scene  # noqa: E402
+from orchestrate.run import solve_into as solve  # noqa: E402
 
 OUT_DIR = RESULTS_DIR / "adequacy"
 GRID_HEIGHTS = (1 / 32, 1 / 16, 1 / 8, 1 / 4, 1 / 2, 1.0)
@@ -159,11 +161,11 @@ def _scenes(table):
 
 
 def features(table):
-    """x, c, q, g (model_choice.scene_ratios) of every row's first patch, and whether
+    """x, c, q, g (estimate.scene_ratios) of every row's first patch, and whether
     its errors are estimated at all."""
     scenes = _scenes(table)
-    ratios = np.array([model_choice.scene_ratios(s, s.coatings[0]) for s in scenes]).T
-    estimated = np.array([model_choice.not_estimated(s, s.coatings[0]) is None for s in scenes])
+    ratios = np.array([estimate.scene_ratios(s, s.coatings[0]) for s in scenes]).T
+    estimated = np.array([estimate.not_estimated(s, s.coatings[0]) is None for s in scenes])
     return ratios, estimated
 
 
@@ -177,7 +179,7 @@ def _shell_constants(x, c, q, error):
 
 def fit(table):
     """The constants of model_choice's estimate from the calibration rows it covers
-    (model_choice.not_estimated): the shell's K1..K4 per quantity (_shell_constants);
+    (estimate.not_estimated): the shell's K1..K4 per quantity (_shell_constants);
     the stretch shell's contact S, s by least squares on log error over the rows above
     JUDGED (the model too stiff: soft coatings), its plateau P as the median |error| of
     the rows below -JUDGED (too soft: stiff thick coatings) and T = P / x^2 at the
@@ -208,7 +210,7 @@ def estimates(table, model, quantity):
     """The estimate of every row's first patch (NaN: not estimated)."""
     values = []
     for scene in _scenes(table):
-        errors = model_choice.estimated_errors(scene, scene.coatings[0])[model]
+        errors = estimate.estimated_errors(scene, scene.coatings[0])[model]
         values.append(np.nan if errors is None else errors[quantity])
     return pd.Series(values, index=table.index)
 
@@ -237,7 +239,7 @@ def judge(table):
 def timed_choice(scene, settings):
     """Solve with "auto" and with the model it chose (Robin loop, default settings):
     (chosen models, the estimate, seconds auto, seconds direct)."""
-    auto_scene = with_model(scene, model_choice.AUTO)
+    auto_scene = with_model(scene, plan.AUTO)
     with tempfile.TemporaryDirectory() as auto_out, tempfile.TemporaryDirectory() as direct_out:
         start = time.perf_counter()
         summary = solve(auto_scene, settings, auto_out + "/run")
@@ -295,13 +297,13 @@ def verdict(validation):
 
 def choice_map(heights, moduli):
     """The model auto chooses on the paper's scene over heights x moduli (index into
-    model_choice.FIDELITY)."""
+    plan.FIDELITY)."""
     choice = np.zeros((len(moduli), len(heights)), dtype=int)
     for j, E2 in enumerate(moduli):
         for i, h2 in enumerate(heights):
-            scene = paper_scene(h2=h2, E2=E2, model=model_choice.AUTO)
-            chosen, _ = model_choice.choose_models(scene, Settings())
-            choice[j, i] = model_choice.FIDELITY.index(chosen.coatings[0].model)
+            scene = paper_scene(h2=h2, E2=E2, model=plan.AUTO)
+            chosen, _ = plan.choose_models(scene, Settings())
+            choice[j, i] = plan.FIDELITY.index(chosen.coatings[0].model)
     return choice
 
 
@@ -311,13 +313,13 @@ def draw_map(calibration, path):
     patches = [scene.coatings[0] for scene in _scenes(calibration)]
     calibration["h2"] = [p.thickness for p in patches]
     calibration["E2"] = [p.E for p in patches]
-    a = model_choice.contact_half_width(paper_scene())
+    a = estimate.contact_half_width(paper_scene())
     heights = np.geomspace(1 / 128, 1.0, 43)
     moduli = np.geomspace(0.1, 10.0, 31)
     choice = choice_map(heights, moduli)
     scenes = [[paper_scene(h2=h2, E2=E2) for h2 in heights] for E2 in moduli]
-    estimate = {model: np.array([[model_choice.worst_error(
-        model_choice.estimated_errors(scene, scene.coatings[0])[model])
+    estimate = {model: np.array([[estimate.worst_error(
+        estimate.estimated_errors(scene, scene.coatings[0])[model])
         for scene in row] for row in scenes]) for model in ONE_D}
     colours = ListedColormap(["#d6e9fb", "#ddf0dd", "#eeeeee"])
     figure, axes = plt.subplots(1, 2, figsize=(12, 4.8), sharey=True)
@@ -338,7 +340,7 @@ def draw_map(calibration, path):
     figure.colorbar(points, ax=axes, label="measured |model error|, the larger of the peak contact\nand bond stresses' (against the 2D model)")
     handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in colours.colors]
     handles.append(plt.Line2D([], [], color="k", linestyle="--"))
-    figure.legend(handles, [f"auto chooses {m}" for m in model_choice.FIDELITY]
+    figure.legend(handles, [f"auto chooses {m}" for m in plan.FIDELITY]
                   + ["estimated model error 1 %"], loc="lower center", ncol=4, fontsize=8,
                   bbox_to_anchor=(0.45, -0.06))
     figure.savefig(path, dpi=150, bbox_inches="tight")

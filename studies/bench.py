@@ -30,12 +30,12 @@ import pandas as pd  # noqa: E402
 
 from studies.claims import distance  # noqa: E402
 from studies.figure_scenes import FIGURE_SCENES  # noqa: E402
-from orchestrate.run.monolithic import monolithic_curves  # noqa: E402
+from orchestrate.run import monolithic_curves  # noqa: E402
 from studies.paths import RESULTS_DIR  # noqa: E402
 from studies.reference import reference  # noqa: E402
-from orchestrate.model.scene import Settings  # noqa: E402
-from orchestrate.model.scene_file import paper_scene  # noqa: E402
-from orchestrate.run.solve import RunFailed, solve  # noqa: E402
+from orchestrate.model import Settings  # noqa: E402
+from orchestrate.model import paper_scene  # noqa: E402
+from orchestrate.run import RunFailed, solve_into as solve  # noqa: E402
 
 SCENES = sorted({(h2, E2) for _, h2, E2 in FIGURE_SCENES})
 ACCELERATED, PAPER, MONOLITHIC, FRESH = ("DDM accelerated", "DDM paper (fixed rho, eps_u 1e-3)",

@@ -25,13 +25,14 @@ import time
 import pandas as pd
 
 from studies.bench_session import SWEEP, one_by_one
-from orchestrate.run.monolithic import monolithic_solution
+from orchestrate.run import monolithic_solution
 from studies.paths import RESULTS_DIR
-from orchestrate.model.scene import Settings
-from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
-from orchestrate.workers.session import Session
-from orchestrate.run.solve import solve
-from orchestrate.sweeps.sweep import load_sweep, named_points
+from orchestrate.model import Settings
+from orchestrate.paths import SCENES_DIR
+from orchestrate.model import load_scene, paper_scene
+from orchestrate.workers import Session
+from orchestrate.run import solve_into as solve
+from orchestrate.sweeps import load_sweep, named_points
 
 LEVELS = (1, 2, 3)
 WAYS = ("iterate", "direct", "two-level")

@@ -19,9 +19,9 @@ import numpy as np
 import pandas as pd
 
 from studies.paths import RESULTS_DIR
-from orchestrate.model.scene import Settings
-from orchestrate.model.scene_file import paper_scene
-from orchestrate.run.solve import RunFailed, solve
+from orchestrate.model import Settings
+from orchestrate.model import paper_scene
+from orchestrate.run import RunFailed, solve_into as solve
 
 
 def measure(settings, label):

@@ -19,9 +19,9 @@ from pathlib import Path
 import pandas as pd
 
 from studies.paths import RESULTS_DIR
-from orchestrate.workers.session import Session
-from orchestrate.run.solve import solve
-from orchestrate.sweeps.sweep import load_sweep, named_points, point_scene, run_sweep
+from orchestrate.workers import Session
+from orchestrate.run import solve_into as solve
+from orchestrate.sweeps import load_sweep, named_points, point_scene, run_sweep
 
 SWEEP = Path(__file__).parent / "sweeps" / "figures.toml"
 FEW = 4

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from studies.figures import load_runs
-from orchestrate.mesh.discretization import simpson
+from orchestrate.mesh import simpson
 
 
 class Runs:

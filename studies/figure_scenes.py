@@ -2,7 +2,7 @@
 fig4 fig5` runs (studies/sweeps/figures.toml), and which runs each figure draws."""
 
 from studies.paths import FIGURE_SWEEP
-from orchestrate.sweeps.sweep import load_sweep
+from orchestrate.sweeps import load_sweep
 
 # Every scene the three figures need, (model, h2, E2) (its runs land in
 # results/figures/runs/).

@@ -28,8 +28,8 @@ from orchestrate.cli import interrupted, stop_on_signals
 from orchestrate.errors import EXIT_CONVERGED, EXIT_NOT_CONVERGED, EXIT_REFUSED, ParameterError
 from studies.figure_scenes import DRAWS
 from studies.paths import FIGURE_SWEEP
-from orchestrate.workers.provenance import forms_digest
-from orchestrate.sweeps.sweep import (run_sweep, kill_pool, load_sweep, named_points, point_stamp, read_manifest,
+from orchestrate.workers import forms_digest
+from orchestrate.sweeps import (run_sweep, kill_pool, load_sweep, named_points, point_stamp, read_manifest,
                     run_status, why_stale)
 
 
@@ -65,7 +65,7 @@ def ready_figures(runs, drawn):
 def _start_drawing(driver):
     """The drawing process: dies with the driver; imports the plotting modules while the
     first runs run."""
-    from orchestrate.workers.worker import die_with_parent
+    from orchestrate.workers import die_with_parent
     die_with_parent(driver)
     importlib.import_module("studies.figures")
 

@@ -37,11 +37,11 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
 from studies.figure_scenes import DRAWS  # noqa: E402
-from orchestrate.files.outputs import partial_path, written  # noqa: E402
+from orchestrate.files import partial_path, written  # noqa: E402
 from studies.paths import RESULTS_DIR  # noqa: E402
-from orchestrate.model.scene import scene_from_dict  # noqa: E402
-from orchestrate.model.scene_file import shorthand_values  # noqa: E402
-from orchestrate.workers.worker import die_with_parent  # noqa: E402
+from orchestrate.model import scene_from_dict  # noqa: E402
+from orchestrate.model import shorthand_values  # noqa: E402
+from orchestrate.workers import die_with_parent  # noqa: E402
 
 LINESTYLE = {"shell": "-", "elastic": "--"}
 STRESS_UNIT = 1e-4          # stresses are drawn in units of 1e-4 E

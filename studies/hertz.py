@@ -47,8 +47,8 @@ import numpy as np
 import pandas as pd
 
 from studies.paths import RESULTS_DIR
-from orchestrate.model.scene import Base, Indenter, Load, Scene, Settings
-from orchestrate.run.solve import solve
+from orchestrate.model import Base, Indenter, Load, Scene, Settings
+from orchestrate.run import solve_into as solve
 
 E, NU = 1.0, 0.3
 RADIUS = 40.0

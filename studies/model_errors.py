@@ -26,10 +26,10 @@ import time
 import numpy as np
 import pandas as pd
 
-from orchestrate.run.answers import END_ZONE, near_patch_ends
-from orchestrate.run.monolithic import monolithic_solution
+from orchestrate.run import END_ZONE, near_patch_ends
+from orchestrate.run import monolithic_solution
 from studies.reference import refinement_settings
-from orchestrate.model.scene import MODELS, to_dict
+from orchestrate.model import MODELS, to_dict
 
 REFERENCE_TOLERANCE = 1e-3     # well below the 0.2 % where model errors are judged
 REFERENCE_LEVELS = (1, 2, 3, 4)

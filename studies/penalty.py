@@ -20,11 +20,11 @@ import argparse
 import numpy as np
 import pandas as pd
 
-from orchestrate.run.monolithic import monolithic_solution
-from orchestrate.files.outputs import write_csv
+from orchestrate.run import monolithic_solution
+from orchestrate.files import write_csv
 from studies.paths import RESULTS_DIR
-from orchestrate.model.scene import Settings
-from orchestrate.model.scene_file import paper_scene
+from orchestrate.model import Settings
+from orchestrate.model import paper_scene
 
 SCENES = ((0.125, 1.0), (1.0, 5.0))       # (h2, E2): the benchmark's reference scenes
 LEVELS = (1, 2, 3)

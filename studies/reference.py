@@ -18,11 +18,11 @@ import numpy as np
 import pandas as pd
 
 from studies.claims import distance
-from orchestrate.run.monolithic import monolithic_curves
-from orchestrate.files.outputs import write_csv
+from orchestrate.run import monolithic_curves
+from orchestrate.files import write_csv
 from studies.paths import RESULTS_DIR
-from orchestrate.model.scene import Settings
-from orchestrate.model.scene_file import paper_scene
+from orchestrate.model import Settings
+from orchestrate.model import paper_scene
 
 PEAK_TOLERANCE = 0.002
 MIN_LEVEL = 3          # one level above the finest benchmarked mesh (2)

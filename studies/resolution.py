@@ -3,7 +3,7 @@ across the contact zone, the study behind the resolution limits of
 orchestrate/run/validity.py (``python -m studies.resolution``, results/resolution.csv).
 
 Each scene is solved with interface elements of decreasing length (element_size), so
-that its a priori contact width 2a (orchestrate/model/model_choice.py's estimate, mirrored in
+that its a priori contact width 2a (orchestrate/model/estimate.py's estimate, mirrored in
 a half model) spans from 2 to 48 elements; the answers (peak contact pressure, the
 bond's peak compression and shear away from the patch ends, the coating's largest
 stress) are compared with those of the finest run, 96 elements across. The scenes: the
@@ -18,10 +18,11 @@ import sys
 
 import pandas as pd
 
-from orchestrate.model.model_choice import contact_half_width
+from orchestrate.model import contact_half_width
 from studies.paths import RESULTS_DIR
-from orchestrate.model.scene import Settings
-from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
+from orchestrate.model import Settings
+from orchestrate.paths import SCENES_DIR
+from orchestrate.model import load_scene, paper_scene
 
 ACROSS = (2, 3, 4, 6, 8, 10, 12, 16, 24, 32, 48)
 REFERENCE_ACROSS = 96

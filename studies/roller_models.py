@@ -50,11 +50,12 @@ import tempfile
 import numpy as np
 import pandas as pd
 
-from orchestrate.mesh.discretization import simpson
+from orchestrate.mesh import simpson
 from studies.paths import RESULTS_DIR
-from orchestrate.model.scene import Settings
-from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene
-from orchestrate.run.solve import RunFailed, solve
+from orchestrate.model import Settings
+from orchestrate.paths import SCENES_DIR
+from orchestrate.model import apply_overrides, load_scene
+from orchestrate.run import RunFailed, solve_into as solve
 
 ROLLER_SCENE_FILE = SCENES_DIR / "roller.toml"
 DIVISORS = (16, 32, 64, 128, 256, 512, 1024, 2048)    # h2 = R / divisor

@@ -19,9 +19,9 @@ from studies.bench import coating_length, errors
 from studies.figure_scenes import FIGURE_HEIGHTS
 from studies.paths import RESULTS_DIR
 from studies.reference import reference
-from orchestrate.model.scene import Settings
-from orchestrate.model.scene_file import paper_scene
-from orchestrate.run.solve import solve
+from orchestrate.model import Settings
+from orchestrate.model import paper_scene
+from orchestrate.run import solve_into as solve
 
 MODELS = ("shell", "stretch_shell")
 MODULI = (0.2, 1.0, 5.0)

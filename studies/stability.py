@@ -21,7 +21,7 @@ import pandas as pd  # noqa: E402
 from studies.bench import errors  # noqa: E402
 from studies.claims import distance  # noqa: E402
 from studies.reference import reference  # noqa: E402
-from orchestrate.model.scene import Settings  # noqa: E402
+from orchestrate.model import Settings  # noqa: E402
 
 STATUS_COLOURS = {"converged": "#4caf50", "max_iterations": "#ffb300", "stagnated": "#fb8c00",
                   "diverged": "#e53935", "error": "#6d4c41", "invalid": "#9e9e9e"}

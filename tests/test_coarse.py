@@ -13,7 +13,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.ddm.coarse import CoarseLevel, _interpolation, coarse_element_size
+from orchestrate.ddm.coarse import _interpolation, coarse_element_size
+from orchestrate.run.coarse_level import CoarseLevel
 from orchestrate.mesh.discretization import discretize
 from orchestrate.errors import ParameterError
 from orchestrate.model.scene import Settings

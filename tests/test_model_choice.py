@@ -1,4 +1,4 @@
-"""model = "auto" (orchestrate/model/model_choice.py): the a priori contact half-width, the
+"""model = "auto" (orchestrate/model/estimate.py, orchestrate/run/plan.py): the a priori contact half-width, the
 estimate of each coating model's error against a measured one, and the choice.
 
 The estimate's constants were fitted on the calibration set (studies/adequacy.py);
@@ -16,13 +16,14 @@ import sys
 
 import pytest
 
-from orchestrate.model import model_choice
+from orchestrate.model import estimate
+from orchestrate.run import plan
 from studies.model_errors import measure, peaks, with_model
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
 from tests.conftest import PROJECT_DIR
 
-AUTO = model_choice.AUTO
+AUTO = plan.AUTO
 
 
 def _scene(name, **overrides):
@@ -31,10 +32,10 @@ def _scene(name, **overrides):
 
 def test_a_descent_becomes_the_force_whose_descent_it_is():
     scene = paper_scene()
-    a = model_choice.contact_half_width(scene)
-    force = math.pi * model_choice.contact_modulus(scene) * a ** 2 / (
-        4 * model_choice.relative_radius(scene))           # Hertz's a, inverted
-    assert model_choice.descent_of_force(scene, force) == pytest.approx(
+    a = estimate.contact_half_width(scene)
+    force = math.pi * estimate.contact_modulus(scene) * a ** 2 / (
+        4 * estimate.relative_radius(scene))           # Hertz's a, inverted
+    assert estimate.descent_of_force(scene, force) == pytest.approx(
         scene.load.displacement, rel=1e-9)
 
 
@@ -45,20 +46,20 @@ def test_the_a_priori_half_width_is_the_measured_one_within_15_percent(scene):
     paper's scene (Johnson's compliance of the finite blocks: +12 %); 0.97 b against
     0.96 b for the cylinder under a force (Hertz)."""
     measured = peaks(with_model(scene, "elastic"), 1)["contact_span"]
-    assert model_choice.contact_half_width(scene) == pytest.approx(measured, rel=0.15)
+    assert estimate.contact_half_width(scene) == pytest.approx(measured, rel=0.15)
 
 
 def test_no_load_no_contact_every_model_exact():
     scene = paper_scene(stamp=0.0)
-    assert model_choice.contact_half_width(scene) == 0.0
-    errors = model_choice.estimated_errors(scene, scene.coatings[0])
-    assert {model_choice.worst_error(e) for e in errors.values()} == {0.0}
+    assert estimate.contact_half_width(scene) == 0.0
+    errors = estimate.estimated_errors(scene, scene.coatings[0])
+    assert {estimate.worst_error(e) for e in errors.values()} == {0.0}
 
 
 def test_the_estimate_is_within_twice_the_measured_error_on_a_held_out_scene():
     scene = paper_scene(h2=0.45, E2=0.3)
     measured = measure("held out", scene)
-    estimated = model_choice.estimated_errors(scene, scene.coatings[0])
+    estimated = estimate.estimated_errors(scene, scene.coatings[0])
     for model in ("shell", "stretch_shell"):
         for quantity, column in (("contact", "peak"), ("bond", "bond_peak")):
             error = abs(measured[f"{model}_error_{column}"])
@@ -76,7 +77,7 @@ def test_where_the_estimate_does_not_hold_auto_takes_the_2d_model(scene, reason)
     """Measured (make adequacy): at nu2 = 0.45-0.49 the shell's error changes sign
     (-0.6 to -2.4 %) and across patch ends it reaches 8 %, where the forms say far less;
     auto must not trust them there, even though the shell is cheaper."""
-    solved, report = model_choice.choose_models(scene, Settings(model_tolerance=1.0))
+    solved, report = plan.choose_models(scene, Settings(model_tolerance=1.0))
     assert {c.model for c in solved.coatings[:1]} == {"elastic"}
     first = report["patches"][0]
     assert reason in first["not_estimated"]
@@ -86,7 +87,7 @@ def test_where_the_estimate_does_not_hold_auto_takes_the_2d_model(scene, reason)
 
 def test_a_scene_without_auto_is_left_as_it_is():
     scene = paper_scene()
-    assert model_choice.choose_models(scene, Settings()) == (scene, None)
+    assert plan.choose_models(scene, Settings()) == (scene, None)
 
 
 @pytest.mark.parametrize("h2, E2, tolerance, chosen", [
@@ -97,15 +98,15 @@ def test_a_scene_without_auto_is_left_as_it_is():
 ])
 def test_auto_chooses_the_cheapest_model_within_tolerance(h2, E2, tolerance, chosen):
     scene = paper_scene(h2=h2, E2=E2, model=AUTO)
-    solved, report = model_choice.choose_models(scene, Settings(model_tolerance=tolerance))
+    solved, report = plan.choose_models(scene, Settings(model_tolerance=tolerance))
     assert solved.coatings[0].model == chosen
     patch = report["patches"][0]
     assert patch["model"] == chosen and patch["estimated_error"] <= tolerance
     costs, errors = patch["estimated_unknowns"], patch["estimated_errors"]
-    passing = [m for m in model_choice.FIDELITY
-               if model_choice.worst_error(errors[m]) <= tolerance]
+    passing = [m for m in plan.FIDELITY
+               if estimate.worst_error(errors[m]) <= tolerance]
     # nothing within tolerance is cheaper by more than the tie margin
-    assert all(costs[chosen] <= model_choice.COST_TIE * costs[m] for m in passing)
+    assert all(costs[chosen] <= plan.COST_TIE * costs[m] for m in passing)
     assert solved == replace(scene, coatings=(replace(scene.coatings[0], model=chosen),))
 
 
@@ -113,11 +114,11 @@ def test_only_auto_patches_are_chosen():
     scene = _scene("discrete")
     patches = list(scene.coatings)
     patches[1] = replace(patches[1], model=AUTO)
-    solved, report = model_choice.choose_models(replace(scene, coatings=tuple(patches)),
+    solved, report = plan.choose_models(replace(scene, coatings=tuple(patches)),
                                                 Settings())
     assert [p["patch"] for p in report["patches"]] == [2]
     assert solved.coatings[0] == scene.coatings[0] and solved.coatings[2] == scene.coatings[2]
-    assert solved.coatings[1].model in model_choice.FIDELITY
+    assert solved.coatings[1].model in plan.FIDELITY
 
 
 def test_the_command_line_reports_the_choice(tmp_path):

@@ -28,7 +28,7 @@ import pytest
 
 from studies import figures
 from orchestrate.mesh.discretization import discretize
-from orchestrate.files.outputs import STRESS_COMPONENTS, write_shell_fields
+from orchestrate.run.outputs import STRESS_COMPONENTS, write_shell_fields
 from orchestrate.run.paraview import RUN_COLLECTION, write_collection, write_sweep_collection
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import paper_scene

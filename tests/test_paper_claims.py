@@ -23,7 +23,7 @@ from studies.figure_sweep import (FIGURE_FILES, STAGING, FigureDrawing, figure_r
 from studies.figure_scenes import FIGURE_HEIGHTS, FIGURE_SCENES
 from studies.paths import FIGURE_SWEEP
 from orchestrate.workers.provenance import forms_digest
-from orchestrate.sweeps.sweep import load_sweep, named_points
+from orchestrate.sweeps import load_sweep, named_points
 from tests.conftest import PROJECT_DIR
 
 HEIGHTS = FIGURE_HEIGHTS

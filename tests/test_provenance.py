@@ -122,7 +122,7 @@ def test_forms_edited_while_a_sweep_runs_leave_no_stale_point(forms, tmp_path):
     """The forms edited once the first point is solved (the sweep's worker process keeps
     its FreeFEM workers from point to point): the later points restart their workers,
     and the first is solved again once the pass is over; every row is the edited law's."""
-    from orchestrate.sweeps.sweep import run_sweep
+    from orchestrate.sweeps import run_sweep
 
     sweep = tmp_path / "sweep.toml"
     sweep.write_text('name = "mid"\n[fixed]\nmodel = "shell"\n[grid]\nh2 = [0.25, 0.125]\n')

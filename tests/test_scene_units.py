@@ -22,7 +22,7 @@ import orchestrate
 from orchestrate.cli import build_parser, scene_from_arguments
 from orchestrate.errors import ParameterError
 from orchestrate.model.scene_file import apply_overrides, load_scene, scene_and_settings
-from orchestrate.sweeps.sweep import load_sweep, point_scene
+from orchestrate.sweeps import load_sweep, point_scene
 from orchestrate.model.units import Units
 from tests.conftest import PROJECT_DIR, STEEL_SCENE, STEEL_VALUES, steel_scene
 

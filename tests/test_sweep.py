@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.sweeps.sweep import load_sweep, named_points, run_sweep
+from orchestrate.sweeps import load_sweep, named_points, run_sweep
 from tests.conftest import PROJECT_DIR
 from tests.test_lifecycle import _processes_mentioning
 
@@ -177,10 +177,10 @@ def test_the_dask_engine_runs_the_same_sweep(sweep_file, uninterrupted, tmp_path
 
 
 def test_checking_a_large_sweep_says_how_far_it_is(monkeypatch):
-    from orchestrate.sweeps import sweep
-    monkeypatch.setattr(sweep, "CHECK_REPORT_SECONDS", 0.0)
+    from orchestrate.sweeps import sweep_file
+    monkeypatch.setattr(sweep_file, "CHECK_REPORT_SECONDS", 0.0)
     said = io.StringIO()
-    sweep.check_points([{"h2": 0.1 + 1e-3 * n} for n in range(5)], stream=said)
+    sweep_file.check_points([{"h2": 0.1 + 1e-3 * n} for n in range(5)], stream=said)
     assert said.getvalue().splitlines()[-1] == "checking the sweep's points: 4 of 5"
 
 
@@ -216,7 +216,7 @@ def test_points_keep_their_names_when_a_sweep_grows(tmp_path):
 
 
 def test_a_sweep_takes_a_scene_file_and_dotted_keys(tmp_path):
-    from orchestrate.sweeps.sweep import point_scene
+    from orchestrate.sweeps import point_scene
     path = tmp_path / "scenes.toml"
     path.write_text('[fixed]\nscene = "discrete.toml"\n"load.force" = 0.01\n'
                     '[grid]\n"coating[2].E" = [2.0, 5.0]\nh2 = [0.25]\n')

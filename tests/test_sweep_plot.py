@@ -21,7 +21,7 @@ from orchestrate.plots.plot import plot_run
 from orchestrate.plots import plot_sweep as plot_sweep_module
 from orchestrate.plots.plot_sweep import axis_label, plot_sweep, read_runs, select, split_columns
 from orchestrate.sweeps.run_names import MAX_LENGTH, run_names
-from orchestrate.sweeps.sweep import load_sweep, named_points, run_sweep
+from orchestrate.sweeps import load_sweep, named_points, run_sweep
 from tests.conftest import PROJECT_DIR
 
 SWEEP = """

@@ -170,7 +170,7 @@ def test_a_mesh_too_coarse_for_the_predicted_contact_is_said_before_any_work(tmp
     """Elements of 2.5 mm for a contact predicted 1.8 mm wide: said before any work (the
     limit, 10 elements across, is studies/resolution.py's study), the count from
     the a priori half-width, and again by the run from the zone it found."""
-    from orchestrate.model.model_choice import contact_half_width
+    from orchestrate.model.estimate import contact_half_width
     from orchestrate.run.solve import prepare
 
     scene, settings = scene_and_settings(steel_scene(tmp_path / "steel.toml"), {},

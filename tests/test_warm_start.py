@@ -16,7 +16,7 @@ from orchestrate.errors import ParameterError
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import paper_scene
 from orchestrate.run.solve import solve
-from orchestrate.sweeps.sweep import load_sweep, run_sweep
+from orchestrate.sweeps import load_sweep, run_sweep
 from orchestrate.run.warm_start import nearest
 
 TOLERANCE = Settings().eps_u

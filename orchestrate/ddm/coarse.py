@@ -16,97 +16,20 @@ coarse), it serves twice:
   iteration: its groups of subdomains (Problem.sweep) one after the other, each group's
   rows of the state taken from A_c, the others kept.
 
-The coarse workers start before the fine ones and probe while the fine run meshes and
-starts (CoarseLevel); they stop once their maps are read.
+The coarse level's workers start before the fine ones and probe while the fine run meshes
+and starts (orchestrate/run/coarse_level.py); they stop once their maps are read.
 
 Measured offline on the paper's scene (2D coating, b/8, 5E; GMRES on the final contact
 set to 1e-7, as many fine solves as iterations): 77 -> 37 at mesh level 2, 85 -> 41 at
 level 3.
 """
 
-import contextlib
-import dataclasses
-
 import numpy as np
 
-from orchestrate.mesh.discretization import discretize
-from orchestrate.files.folders import WorkFolder
-from orchestrate.ddm.interface_system import InterfaceSystem
-from orchestrate.ddm.robin import first_contact_set, robin_data, robin_laws, updated_contact_set
-from orchestrate.workers.session import Session
-from orchestrate.ddm.state import StateLayout
-from orchestrate.workers.subdomains import Subdomains, write_inputs
+from orchestrate.ddm.robin import first_contact_set, robin_laws, updated_contact_set
 
 # The coarse contact problem's Newton steps at most (it takes 7-11 on the example scenes).
 COARSE_NEWTON_STEPS = 50
-
-
-class CoarseLevel:
-    """The coarse level of a fine run's ``problem``: the scene at mesh level 1 (on level
-    1 itself, with interface elements twice as long: coarse_element_size) with the fine
-    penalty and Robin parameter. Its workers start, and are asked for their maps, at
-    once; they probe while the fine run meshes and starts its own, and ``correction``
-    collects the maps and stops them. ``paired``: whether the two levels' interfaces
-    pair up along s (else there is no correction)."""
-
-    def __init__(self, problem):
-        settings = problem.settings
-        # probed and solved directly by persistent workers of its own, whatever the fine
-        # run's workers (a fresh process per solve keeps no factorisation to probe)
-        coarse_settings = dataclasses.replace(settings, mesh_level=1, theta=settings.theta,
-                                              robin=settings.robin_parameter,
-                                              inner_solve="direct", workers="persistent",
-                                              element_size=coarse_element_size(settings))
-        self.fine_layout = StateLayout(problem.interfaces)
-        self.coarse = discretize(problem.scene, coarse_settings)
-        self.layout = StateLayout(self.coarse.interfaces)
-        self.paired = _pair_up(problem.interfaces, self.coarse.interfaces)
-        self._resources = contextlib.ExitStack()
-        self.workers = None
-        if not self.paired:
-            return
-        try:
-            workdir = self._resources.enter_context(WorkFolder())
-            session = self._resources.enter_context(Session())
-            files = write_inputs(self.coarse, workdir)
-            self.workers = self._resources.enter_context(
-                Subdomains(self.coarse, files, session, workdir))
-            self.workers.request_maps(self._data())
-        except BaseException:
-            self.close()
-            raise
-
-    def _data(self):
-        """The Robin data of an empty contact set: the maps' coefficients."""
-        layout = self.layout
-        return robin_data(layout, layout.zeros(),
-                          _coarse_laws(self.coarse, layout, np.zeros(layout.gap.size)))
-
-    def correction(self):
-        """The CoarseCorrection from the probed maps (None unless ``paired``); the coarse
-        workers stop."""
-        if not self.paired:
-            return None
-        try:
-            maps = self.workers.robin_maps(self._data())
-        finally:
-            self.close()
-        sides = {name: self.coarse.sides_of(name) for name in maps}
-        return CoarseCorrection(self.fine_layout, self.coarse, self.layout,
-                                InterfaceSystem(self.layout, sides, maps))
-
-    def close(self):
-        """Stop the coarse workers (those still probing are killed) and remove their
-        folders."""
-        if self.workers is not None:
-            self.workers.kill_probing()
-        self._resources.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
 
 
 def coarse_element_size(settings):
@@ -115,13 +38,14 @@ def coarse_element_size(settings):
     return settings.element_size * (2.0 if settings.mesh_level == 1 else 1.0)
 
 
-def _coarse_laws(coarse, layout, psi):
+def coarse_laws(coarse, layout, psi):
     """The coarse problem's Robin laws for the contact set psi, inactive points held (the
     fine active-set loop's)."""
     return robin_laws(coarse, layout, psi, coarse.penalty, coarse.robin, hold_inactive=True)
 
 
-def _pair_up(fine, coarse):
+def paired(fine, coarse):
+    """Whether the interfaces of two levels pair up along s (else no correction)."""
     return (len(fine) == len(coarse)
             and all(f.name == c.name and f.kind == c.kind for f, c in zip(fine, coarse))
             and all(np.all(np.diff(i.s) > 0) for i in (*fine, *coarse)))
@@ -137,7 +61,7 @@ class CoarseCorrection:
         self._psi = None
 
     def laws(self, psi):
-        return _coarse_laws(self.coarse, self.coarse_layout, psi)
+        return coarse_laws(self.coarse, self.coarse_layout, psi)
 
     def first_state(self):
         """The fine state interpolated from the coarse contact problem's solution."""

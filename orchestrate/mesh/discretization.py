@@ -218,7 +218,7 @@ def coating_layers(coating, level):
 
 def discretize(scene, settings):
     """The subdomains and interfaces of a scene at the settings' mesh (every patch's
-    model decided: model_choice.choose_models turns "auto" into one)."""
+    model decided: run/plan.py's choose_models turns "auto" into one)."""
     undecided = [n for n, c in enumerate(scene.coatings, start=1) if c.model not in MODELS]
     if undecided:
         raise ValueError(f"coating{undecided[0]}: model {scene.coatings[undecided[0] - 1].model!r} "

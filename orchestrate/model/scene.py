@@ -27,7 +27,7 @@ from orchestrate.model.units import Units
 
 MODELS = ("shell", "stretch_shell", "elastic")
 SHELL_MODELS = ("shell", "stretch_shell")   # the coating on its mid-line
-MODEL_CHOICES = MODELS + ("auto",)            # auto: chosen per patch (model_choice.py)
+MODEL_CHOICES = MODELS + ("auto",)            # auto: chosen per patch (run/plan.py)
 THETA_RANGE = (1e-6, 1.0)      # the penalty, b/E
 ROBIN_RANGE = (1e-3, 1e3)      # the Robin parameter, E/b
 MODULUS_RATIO = 1e6            # the largest over the smallest modulus of a scene
@@ -206,7 +206,7 @@ class Coating:
     nu: float = 0.3
     model: str = "shell"           # "shell" (Timoshenko-type, the paper's), "stretch_shell"
                                    # (the same with thickness stretch), "elastic" (2D) or
-                                   # "auto" (chosen per scene: orchestrate/model/model_choice.py)
+                                   # "auto" (chosen per scene: orchestrate/run/plan.py)
     shear_factor: float = 5.0 / 6.0  # k' of the shell
 
     def check(self, prefix):

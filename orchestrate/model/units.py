@@ -11,7 +11,7 @@ file may state other units in a [units] table:
 
 Such a scene is made dimensionless once, before any work (lengths / b, moduli / E, a
 force / (E b)), and every output of the run is expressed in the file's units once, when
-the run is written (express_run): the CSV columns, the reactions, the VTU fields and the
+the run is written (orchestrate/run/outputs.py's express_run): the CSV columns, the reactions, the VTU fields and the
 summary, each scaled by its kind (KINDS: a registry by name; a name missing from it is a
 fault, so that no output can leave unscaled). Without [units] the scene is in b and E and
 nothing is scaled. The summary's "units" entry names the unit of every kind and column.
@@ -27,14 +27,8 @@ refused, naming the key and what was due. pint is imported only where a unit is 
 
 from dataclasses import dataclass, fields, replace
 import math
-import os
-
-import meshio
-import numpy as np
-import pandas as pd
 
 from orchestrate.errors import ParameterError
-from orchestrate.files.outputs import write_csv, write_text, write_vtu
 
 LENGTH, STRESS, FORCE, MOMENT = "length", "stress", "force", "moment"
 INVERSE_LENGTH = "inverse length"      # the paper's chi, the face's curvature x^2 factor
@@ -310,55 +304,3 @@ def scaled_summary(value, scales, key="summary"):
         scale = scales.of(kind_of(key, "summary.json"))
         return value if scale == 1.0 else value * scale     # counts stay integers
     return value
-
-
-def column_units(folder, units):
-    """{file: {column: unit}} of the run's CSV files, for the summary."""
-    names = units.names()
-    table = {}
-    for name in sorted(os.listdir(folder)):
-        if name.endswith(".csv"):
-            with open(os.path.join(folder, name)) as f:     # plain names, no quotes
-                columns = f.readline().strip().split(",")
-            table[name] = {c: names[kind_of(c, name)] for c in columns if c != "interface"}
-    return table
-
-
-def _scaled_column(values, column, file, scales):
-    if column == "interface":                # the interfaces' names
-        return values
-    scale = scales.of(kind_of(column, file))
-    return values if scale == 1.0 else values * scale
-
-
-def express_run(folder, scales):
-    """Express every file of a finished run's FOLDER in the scene's units: CSV columns,
-    reactions (forces) and VTU points and fields, by kind, each rewritten atomically; a
-    run in b and E has nothing to do."""
-    if scales == Scales():
-        return
-    for name in sorted(os.listdir(folder)):
-        path = os.path.join(folder, name)
-        if name.endswith(".csv"):
-            table = pd.read_csv(path)
-            write_csv(path, {c: _scaled_column(table[c].to_numpy(), c, name, scales)
-                             for c in table.columns})
-        elif name.endswith("_reactions.txt"):
-            force = scales.of(FORCE)
-            lines = [line.split() for line in open(path).read().split("\n") if line.strip()]
-            write_text(path, "".join(f"{label} {float(r1) * force!r} {float(r2) * force!r}\n"
-                                     for label, r1, r2 in lines))
-        elif name.endswith(".vtu"):
-            mesh = meshio.read(path)
-            mesh.points = mesh.points * scales.length
-            mesh.point_data = {field: np.asarray(data) * scales.of(kind_of(field, name))
-                               for field, data in mesh.point_data.items()}
-            write_vtu(path, mesh)
-
-
-def summary_units(folder, units, scales):
-    """The summary's "units" entry: the unit of each kind, what b and E are in the
-    scene's units, and the unit of every column of every CSV file."""
-    scale = {} if units.dimensionless else {"b": f"{scales.length!r} {units.length}",
-                                            "E": f"{scales.stress!r} {units.stress}"}
-    return {**units.names(), **scale, "columns": column_units(folder, units)}

@@ -25,7 +25,7 @@ import pandas as pd  # noqa: E402
 from orchestrate.errors import ParameterError  # noqa: E402
 from orchestrate.sweeps.run_names import UNSAFE  # noqa: E402
 from orchestrate.model.scene_file import SHORTHANDS  # noqa: E402
-from orchestrate.sweeps.sweep import OUTCOME_COLUMNS  # noqa: E402
+from orchestrate.sweeps import OUTCOME_COLUMNS  # noqa: E402
 from orchestrate.model.units import DEGREES, FORCE, KINDS, LENGTH, SCENE_KINDS, SECONDS, STRESS  # noqa: E402
 
 NOT_PARAMETERS = {"id", *OUTCOME_COLUMNS}  # a run's name and outcome: never split by

@@ -3,4 +3,15 @@
 run leaves its model (validity.py), a start from a finished run (warm_start.py), the
 coarse level's own workers (coarse_level.py), ParaView collections (paraview.py), the
 monolithic solve of the same discrete problem (monolithic.py) and the Python API
-(api.py)."""
+(api.py). ``solve_into(scene, settings, folder)`` is a run into a folder, as the command
+line's; ``solve_result`` (``orchestrate.solve``) returns a Result without one."""
+
+from orchestrate.errors import RunFailed
+from orchestrate.run.answers import END_ZONE, near_patch_ends
+from orchestrate.run.api import Result
+from orchestrate.run.api import solve as solve_result
+from orchestrate.run.monolithic import monolithic_curves, monolithic_solution
+from orchestrate.run.solve import solve as solve_into
+
+__all__ = ["END_ZONE", "Result", "RunFailed", "monolithic_curves", "monolithic_solution",
+           "near_patch_ends", "solve_into", "solve_result"]

@@ -7,13 +7,13 @@
 
 Paths inside a .pvd are relative to its folder, so a run folder (renamed from its
 scratch name when complete) or a sweep folder can be moved whole. A .pvd is written
-to a temporary name and renamed, like every output (orchestrate/files/outputs.py).
+to a temporary name and renamed, like every output (orchestrate/files/writing.py).
 """
 
 import os
 import xml.etree.ElementTree as ElementTree
 
-from orchestrate.files.outputs import write_text
+from orchestrate.files.writing import write_text
 
 RUN_COLLECTION = "run.pvd"
 SWEEP_COLLECTION = "sweep.pvd"

@@ -25,7 +25,6 @@ stagnates writes only history.csv and a summary.json that says why.
 """
 
 import contextlib
-from dataclasses import dataclass
 import math
 import os
 import time
@@ -33,29 +32,29 @@ import time
 import numpy as np
 import pandas as pd
 
-from orchestrate.run import answers
-
-from orchestrate.workers import freefem
-from orchestrate.ddm.coarse import CoarseLevel
 from orchestrate.ddm.contact import contact_half_width, contact_zones
-from orchestrate.mesh.discretization import discretize
-from orchestrate.errors import RunFailed, WarnedBeforeWork  # noqa: F401  (raised here; callers import them from here too)
+from orchestrate.ddm.robin import run_robin_loop
+from orchestrate.ddm.state import StateLayout
+from orchestrate.errors import RunFailed, WarnedBeforeWork  # noqa: F401  (callers import them here)
 from orchestrate.faults import checkpoint
 from orchestrate.files.folders import RunFolder, WorkFolder
+from orchestrate.files.writing import write_csv, write_json
 from orchestrate.mesh.labels import LABELS
-from orchestrate.model.model_choice import choose_models
-from orchestrate.files.outputs import read_reactions, write_csv, write_history, write_json, write_shell_fields
+from orchestrate.model.scene import to_dict
+from orchestrate.model.units import scaled_summary
+from orchestrate.run import answers
+from orchestrate.run.coarse_level import CoarseLevel
 from orchestrate.run.paraview import RUN_COLLECTION, write_collection
-from orchestrate.mesh.problem_size import check_size
-from orchestrate.workers.provenance import forms_hashes, provenance
-from orchestrate.ddm.robin import run_robin_loop
-from orchestrate.model.scene import check_compatible, to_dict
-from orchestrate.workers.session import Session
-from orchestrate.ddm.state import StateLayout
-from orchestrate.workers.subdomains import start_subdomains, write_inputs
-from orchestrate.model.units import dimensionless, express_run, scaled_summary, summary_units
-from orchestrate.run.validity import Say, mesh_warnings, run_warnings, scene_warnings
+from orchestrate.run.outputs import (check_written, express_run, read_reactions,
+                                     summary_units, write_body_fields, write_history,
+                                     write_shell_fields)
+from orchestrate.run.plan import prepare
+from orchestrate.run.validity import Say, forms_edited_warning, run_warnings
 from orchestrate.run.warm_start import start_state
+from orchestrate.workers import freefem
+from orchestrate.workers.provenance import forms_hashes, provenance
+from orchestrate.workers.session import Session
+from orchestrate.workers.subdomains import start_subdomains, write_inputs
 
 
 def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None,
@@ -128,8 +127,11 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
                     loop.converged, loop.status = False, "contact_zone"
                     loop.reason = (f"the contact reaches the end of contact_zone at x1 = "
                                    f"{reached:g}: contact beyond it was assumed away; widen it")
-            if loop.converged:
-                subdomains.write_outputs()   # the workers hold the fields of the last solve
+            if loop.converged:           # the workers hold the fields of the last solve
+                for prefix, kind, counts, fields in subdomains.write_outputs().values():
+                    check_written(prefix, kind, counts, fields)
+                    if kind == "body" and fields:
+                        write_body_fields(prefix)
             dofs = subdomains.dofs
             kept = subdomains.kept
         summary = {
@@ -178,38 +180,6 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
 
 # An iterated inner solve that auto chose and that ended so falls back to the direct solve
 FALLBACK_STATUSES = ("diverged", "stagnated")
-
-
-@dataclass(frozen=True)
-class Plan:
-    """A run decided before any work (prepare)."""
-
-    scene: object          # the scene as given, every "auto" patch's model chosen
-    problem: object        # the problem of its dimensionless form
-    model_choice: object   # the choice's report, or None
-    scales: object         # Scales back to the scene's units
-    warnings: tuple        # what validity.py knows of the scene before any work
-
-
-def prepare(scene, settings):
-    """Everything checked and decided before any work (a Plan). ParameterError for
-    settings the scene cannot take or a problem too large."""
-    check_compatible(scene, settings)
-    solved, scales = dimensionless(scene)
-    solved, model_choice = choose_models(solved, settings)
-    problem = discretize(solved, settings)
-    check_size(problem)
-    chosen = scene.with_models([c.model for c in solved.coatings])
-    say = Say(scales, scene.units)
-    return Plan(chosen, problem, model_choice, scales,
-                tuple(scene_warnings(chosen, scene, settings, say)
-                      + mesh_warnings(problem, say)))
-
-
-def forms_edited_warning():
-    return {"code": "forms_edited", "message": "a FreeFEM form or script was edited while "
-            "the run went on: its workers may have read either version (provenance records "
-            "the hashes at its start); run it again", "value": None, "limit": None}
 
 
 def _inner_solve_used(history, two_levels):

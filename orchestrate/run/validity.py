@@ -4,7 +4,7 @@ the limit it passed.
 The model is linear elasticity with small displacements and strains, contact paired
 along the indenter face's normal (the faces close, n1 ~ -n2), on the discretisation the
 settings ask for, with a coating model whose error may have been estimated
-(orchestrate/model/model_choice.py). A run can converge, exactly, to an answer of that model
+(orchestrate/model/estimate.py). A run can converge, exactly, to an answer of that model
 while the scene leaves it: a load that pushes the contact to a body's edge, moduli in
 GPa under an MPa label, a coating as thick as its base. Each such case is a warning in
 summary.json's "warnings" (code, message, value, limit), printed at the end of a run and
@@ -37,7 +37,7 @@ Values are computed in the solver's b and E and said in the scene's units.
 
 import numpy as np
 
-from orchestrate.model.model_choice import contact_half_width, estimated_errors, not_estimated
+from orchestrate.model.estimate import contact_half_width, estimated_errors, not_estimated
 from orchestrate.model.scene import SHELL_MODELS
 
 STRAIN_LIMIT = 0.02          # linear elasticity drops the strain's quadratic term, about half
@@ -65,7 +65,7 @@ def base_depth(base):
 def mesh_warnings(problem, say):
     """The warnings of a mesh too coarse for the contact the scene will make, before any
     work: fewer than ELEMENTS_ACROSS interface elements across the a priori contact width
-    (orchestrate/model/model_choice.py's estimate; a half model's mirrored), or across a
+    (orchestrate/model/estimate.py's estimate; a half model's mirrored), or across a
     patch's part of it (a pad narrower than the contact carries its own pressure). The
     limit is studies/resolution.py's study: at 10 elements across, the peak pressure
     within 0.2 % and the coating's largest stress within 1 % of a mesh ten times finer."""
@@ -282,3 +282,11 @@ def _resolution_warnings(x1, symmetric, results, say):
                 "is not resolved; a smaller element_size (it takes a length with its unit) "
                 "or a higher mesh_level", across, ELEMENTS_ACROSS))
     return warnings
+
+
+def forms_edited_warning():
+    """A form or script edited while the run went on (provenance.py: its hashes at the
+    end are not those at its start)."""
+    return _warning("forms_edited", "a FreeFEM form or script was edited while the run "
+                    "went on: its workers may have read either version (provenance records "
+                    "the hashes at its start); run it again")

@@ -4,3 +4,9 @@ records exchanged with it (exchange.py), workers kept from scene to scene (sessi
 the workers of one run and their input files (subdomains.py), and a worker's
 Robin-to-trace map (robin_map.py). The forms' Python side: nothing here solves an
 equation, every solve is a worker's."""
+
+from orchestrate.workers.provenance import forms_digest
+from orchestrate.workers.session import Session
+from orchestrate.workers.worker import die_with_parent
+
+__all__ = ["Session", "die_with_parent", "forms_digest"]

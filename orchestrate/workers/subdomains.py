@@ -16,7 +16,6 @@ from orchestrate.errors import system_failure
 from orchestrate.faults import checkpoint
 from orchestrate.workers.exchange import parse_reply, reply_count, request_arrays, write_sides
 from orchestrate.mesh.meshes import coating_mesh, write_body_mesh, write_medit
-from orchestrate.files.outputs import check_written, write_body_fields
 from orchestrate.mesh.body_plans import BodyPlan
 from orchestrate.workers.robin_map import check, receive_map, send_map_request
 from orchestrate.workers.session import body_fingerprint, files_fingerprint
@@ -274,10 +273,11 @@ class Subdomains:
 
     def write_outputs(self):
         """Ask every worker to write its fields (CSV) and reactions next to its output
-        prefix, check that every file is whole, and write each body's VTU from them; the
-        indenter's and base's fields only with Settings.body_fields (a coating's answers
-        read its fields). A worker whose last solve was its map's solves for real first
-        (its fields), and its traces must agree with the map's."""
+        prefix; the indenter's and base's fields only with Settings.body_fields (a
+        coating's answers read its fields). A worker whose last solve was its map's solves
+        for real first (its fields), and its traces must agree with the map's. Returns
+        {name: (output prefix, kind, the counts the worker says it wrote, whether it wrote
+        its fields)}: orchestrate/run/outputs.py checks the files against them."""
         real = [name for name, mapped in self.mapped.items() if mapped]
         for name in real:
             self.entries[name].worker.send(CMD_SOLVE, self.last_requests[name])
@@ -291,12 +291,12 @@ class Subdomains:
             entry.worker.send_output(self.output_prefix[name],
                                      self.origins[name] - entry.origin, fields[name])
         checkpoint("output")
+        written = {}
         for name, entry in self.entries.items():
-            written, = entry.worker.receive_arrays(1)
-            kind = self.problem.subdomains[name].kind
-            check_written(self.output_prefix[name], kind, written, fields[name])
-            if kind == "body" and fields[name]:
-                write_body_fields(self.output_prefix[name])
+            counts, = entry.worker.receive_arrays(1)
+            written[name] = (self.output_prefix[name], self.problem.subdomains[name].kind,
+                             counts, fields[name])
+        return written
 
     def _drop(self):
         """Stop this run's workers (a failed run leaves none to the next)."""
@@ -342,7 +342,7 @@ class FreshProcessSubdomains(Subdomains):
         try:
             for name, data in self.last_data.items():
                 super().solve(data, [name])
-            super().write_outputs()
+            return super().write_outputs()
         finally:
             self._drop()
 

@@ -1,4 +1,7 @@
-"""model = "auto": the cheapest coating model whose estimated error is within tolerance.
+"""The a priori estimates of a scene: the contact's half-width (plane-strain Hertz) and
+each coating model's error, before any mesh; what ``model = "auto"`` chooses by
+(orchestrate/run/plan.py) and what the warnings model_error and model_uncalibrated say
+(orchestrate/run/validity.py).
 
 The estimate is a priori: from quantities of the scene, before any mesh, calibrated on
 measured errors (studies/adequacy.py, ``--fit``) and checked on scenes it never saw
@@ -46,22 +49,11 @@ estimated" and auto takes the 2D model: a coating Poisson ratio outside NU2_CALI
 a step the forms know nothing of (measured 1.6-8.3 % for the shell against 0.003-2.2 %
 from its form).
 
-Cost: the estimated number of unknowns of the whole problem (problem_size.py), counted
-before any mesh. Costs within COST_TIE of the cheapest count as the same, and then the
-more faithful model wins: on the paper's mesh the 2D coating needs no more unknowns than
-a shell until it must refine (thinner than about b/32), and a run's time follows its
-unknowns (docs/findings.md, "Speed and accuracy").
 """
 
 import math
 
-from orchestrate.mesh.discretization import discretize
-from orchestrate.mesh.problem_size import estimated_dofs
 from orchestrate.model.scene import MODELS
-
-AUTO = "auto"
-FIDELITY = ("shell", "stretch_shell", "elastic")   # least to most faithful
-COST_TIE = 1.1
 
 # Fitted on the calibration set (results/adequacy/calibration.csv) by
 # ``python -m studies.adequacy --fit``
@@ -198,41 +190,3 @@ def estimated_errors(scene, coating, a=None):
 def worst_error(errors):
     """The larger of a model's estimated errors (infinite: not estimated)."""
     return math.inf if errors is None else max(errors.values())
-
-
-# ---- the choice ------------------------------------------------------------------------
-
-def estimated_unknowns(scene, settings):
-    return sum(estimated_dofs(discretize(scene, settings)).values())
-
-
-def choose_models(scene, settings):
-    """(the scene with every "auto" patch's model chosen, the choice's report or None)."""
-    auto = [n for n, c in enumerate(scene.coatings) if c.model == AUTO]
-    if not auto:
-        return scene, None
-    tolerance = settings.model_tolerance
-    a = contact_half_width(scene)
-    # while a patch is decided, the other undecided ones are shells (the cheapest)
-    models = [("shell" if c.model == AUTO else c.model) for c in scene.coatings]
-    patches = []
-    for n in auto:
-        coating = scene.coatings[n]
-        errors = estimated_errors(scene, coating, a)
-        unknowns = {}
-        for model in FIDELITY:
-            trial = list(models)
-            trial[n] = model
-            unknowns[model] = round(estimated_unknowns(scene.with_models(trial), settings))
-        passing = [m for m in FIDELITY if worst_error(errors[m]) <= tolerance]
-        cheapest = min(unknowns[m] for m in passing)           # elastic always passes
-        chosen = [m for m in passing if unknowns[m] <= COST_TIE * cheapest][-1]
-        models[n] = chosen
-        patches.append({"patch": n + 1, "model": chosen,
-                        "estimated_error": worst_error(errors[chosen]),
-                        "not_estimated": not_estimated(scene, coating, a),
-                        "h2_over_a": coating.thickness / a if a else None,
-                        "estimated_errors": errors, "estimated_unknowns": unknowns})
-    report = {"tolerance": tolerance, "contact_half_width_estimate": a,
-              "patches": patches}
-    return scene.with_models(models), report

@@ -1,10 +1,9 @@
-"""Files of a run. A run writes into its private scratch folder (orchestrate/files/folders.py),
-which takes the output folder's name once complete; summary.json, written last, marks a
-finished run. Files written elsewhere (tables of sweeps, figures) go to a temporary name
-and are renamed, so a file that exists is complete."""
+"""A run's output files: checked whole after the workers wrote them (FreeFEM does not
+report a failed write), the bodies' and shells' VTU fields written from their CSV, the
+loop's history, the reactions, and every file expressed in the scene's units once the
+run is written (express_run: each number scaled by the kind of its column,
+orchestrate/model/units.py's KINDS)."""
 
-import csv
-import json
 import os
 from pathlib import Path
 
@@ -12,55 +11,10 @@ import meshio
 import numpy as np
 import pandas as pd
 
+from orchestrate.errors import SystemFailure
+from orchestrate.files.writing import write_csv, write_text, write_vtu
+from orchestrate.model.units import FORCE, Scales, kind_of
 from orchestrate.run.answers import fibre_stresses
-from orchestrate.errors import SystemFailure, system_failure
-
-
-def partial_path(path):
-    """Where ``written`` writes ``path`` before the rename."""
-    path = Path(path)
-    return path.with_name(f".{path.name}.partial")
-
-
-def _atomic(path):
-    return Path(path), partial_path(path)
-
-
-def written(path, write):
-    """Run write(partial path), then rename; a failed write leaves nothing and says why."""
-    path, partial = _atomic(path)
-    try:
-        write(partial)
-        os.replace(partial, path)
-    except OSError as error:
-        partial.unlink(missing_ok=True)
-        raise system_failure(error, f"writing {path.name}") from None
-
-
-def write_json(path, data):
-    write_text(path, json.dumps(data, indent=2) + "\n")
-
-
-def write_text(path, text):
-    written(path, lambda partial: Path(partial).write_text(text))
-
-
-def write_vtu(path, mesh):
-    """Write a meshio mesh as VTU (binary, the arrays' own precision)."""
-    written(path, lambda partial: meshio.write(partial, mesh, file_format="vtu"))
-
-
-def write_csv(path, columns):
-    """Write ``{name: values}`` as CSV, columns in the given order, full precision."""
-    names = list(columns)
-    rows = zip(*(np.asarray(columns[n]).tolist() for n in names))
-
-    def write(partial):
-        with open(partial, "w", newline="") as out:
-            writer = csv.writer(out)
-            writer.writerow(names)
-            writer.writerows(rows)
-    written(path, write)
 
 
 def check_written(prefix, kind, counts, fields=True):
@@ -157,3 +111,55 @@ def write_shell_fields(fields_csv, spec, vtu_path):
     point_data.update(sigma11_top=top, sigma11_bottom=bottom, sigma13_mean=shear)
     mesh = meshio.Mesh(points, [("line", lines[keep])], point_data=point_data)
     write_vtu(vtu_path, mesh)
+
+
+def column_units(folder, units):
+    """{file: {column: unit}} of the run's CSV files, for the summary."""
+    names = units.names()
+    table = {}
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".csv"):
+            with open(os.path.join(folder, name)) as f:     # plain names, no quotes
+                columns = f.readline().strip().split(",")
+            table[name] = {c: names[kind_of(c, name)] for c in columns if c != "interface"}
+    return table
+
+
+def _scaled_column(values, column, file, scales):
+    if column == "interface":                # the interfaces' names
+        return values
+    scale = scales.of(kind_of(column, file))
+    return values if scale == 1.0 else values * scale
+
+
+def express_run(folder, scales):
+    """Express every file of a finished run's FOLDER in the scene's units: CSV columns,
+    reactions (forces) and VTU points and fields, by kind, each rewritten atomically; a
+    run in b and E has nothing to do."""
+    if scales == Scales():
+        return
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name)
+        if name.endswith(".csv"):
+            table = pd.read_csv(path)
+            write_csv(path, {c: _scaled_column(table[c].to_numpy(), c, name, scales)
+                             for c in table.columns})
+        elif name.endswith("_reactions.txt"):
+            force = scales.of(FORCE)
+            lines = [line.split() for line in open(path).read().split("\n") if line.strip()]
+            write_text(path, "".join(f"{label} {float(r1) * force!r} {float(r2) * force!r}\n"
+                                     for label, r1, r2 in lines))
+        elif name.endswith(".vtu"):
+            mesh = meshio.read(path)
+            mesh.points = mesh.points * scales.length
+            mesh.point_data = {field: np.asarray(data) * scales.of(kind_of(field, name))
+                               for field, data in mesh.point_data.items()}
+            write_vtu(path, mesh)
+
+
+def summary_units(folder, units, scales):
+    """The summary's "units" entry: the unit of each kind, what b and E are in the
+    scene's units, and the unit of every column of every CSV file."""
+    scale = {} if units.dimensionless else {"b": f"{scales.length!r} {units.length}",
+                                            "E": f"{scales.stress!r} {units.stress}"}
+    return {**units.names(), **scale, "columns": column_units(folder, units)}

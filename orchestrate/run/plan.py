@@ -1,0 +1,89 @@
+"""A run decided before any work: the scene checked against the settings and made
+dimensionless, every "auto" patch's model chosen, the discrete problem, its size
+against the machine, and the warnings the scene already has (a Plan).
+
+model = "auto" takes, per patch, the cheapest coating model whose estimated errors
+(orchestrate/model/estimate.py) are within the tolerance. Cost: the estimated number of
+unknowns of the whole problem (orchestrate/mesh/problem_size.py), counted before any
+mesh. Costs within COST_TIE of the cheapest count as the same, and then the more
+faithful model wins: on the paper's mesh the 2D coating needs no more unknowns than a
+shell until it must refine (thinner than about b/32), and a run's time follows its
+unknowns (docs/findings.md, "Speed and accuracy").
+"""
+
+from dataclasses import dataclass
+
+from orchestrate.mesh.discretization import discretize
+from orchestrate.mesh.problem_size import check_size, estimated_dofs
+from orchestrate.model.estimate import (contact_half_width, estimated_errors, not_estimated,
+                                        worst_error)
+from orchestrate.model.scene import check_compatible
+from orchestrate.model.units import dimensionless
+from orchestrate.run.validity import Say, mesh_warnings, scene_warnings
+
+AUTO = "auto"
+FIDELITY = ("shell", "stretch_shell", "elastic")   # least to most faithful
+COST_TIE = 1.1
+
+
+def estimated_unknowns(scene, settings):
+    return sum(estimated_dofs(discretize(scene, settings)).values())
+
+
+def choose_models(scene, settings):
+    """(the scene with every "auto" patch's model chosen, the choice's report or None)."""
+    auto = [n for n, c in enumerate(scene.coatings) if c.model == AUTO]
+    if not auto:
+        return scene, None
+    tolerance = settings.model_tolerance
+    a = contact_half_width(scene)
+    # while a patch is decided, the other undecided ones are shells (the cheapest)
+    models = [("shell" if c.model == AUTO else c.model) for c in scene.coatings]
+    patches = []
+    for n in auto:
+        coating = scene.coatings[n]
+        errors = estimated_errors(scene, coating, a)
+        unknowns = {}
+        for model in FIDELITY:
+            trial = list(models)
+            trial[n] = model
+            unknowns[model] = round(estimated_unknowns(scene.with_models(trial), settings))
+        passing = [m for m in FIDELITY if worst_error(errors[m]) <= tolerance]
+        cheapest = min(unknowns[m] for m in passing)           # elastic always passes
+        chosen = [m for m in passing if unknowns[m] <= COST_TIE * cheapest][-1]
+        models[n] = chosen
+        patches.append({"patch": n + 1, "model": chosen,
+                        "estimated_error": worst_error(errors[chosen]),
+                        "not_estimated": not_estimated(scene, coating, a),
+                        "h2_over_a": coating.thickness / a if a else None,
+                        "estimated_errors": errors, "estimated_unknowns": unknowns})
+    report = {"tolerance": tolerance, "contact_half_width_estimate": a,
+              "patches": patches}
+    return scene.with_models(models), report
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A run decided before any work (prepare)."""
+
+    scene: object          # the scene as given, every "auto" patch's model chosen
+    problem: object        # the problem of its dimensionless form
+    model_choice: object   # the choice's report, or None
+    scales: object         # Scales back to the scene's units
+    warnings: tuple        # what validity.py knows of the scene before any work
+
+
+def prepare(scene, settings):
+    """Everything checked and decided before any work (a Plan). ParameterError for
+    settings the scene cannot take or a problem too large."""
+    check_compatible(scene, settings)
+    solved, scales = dimensionless(scene)
+    solved, model_choice = choose_models(solved, settings)
+    problem = discretize(solved, settings)
+    check_size(problem)
+    chosen = scene.with_models([c.model for c in solved.coatings])
+    say = Say(scales, scene.units)
+    return Plan(chosen, problem, model_choice, scales,
+                tuple(scene_warnings(chosen, scene, settings, say)
+                      + mesh_warnings(problem, say)))
+
