@@ -18,7 +18,7 @@ patches counted from 1) and the allowed range. Scene and settings are written ne
 every result, so that any result can be reproduced.
 """
 
-from dataclasses import asdict, dataclass, fields, replace
+from dataclasses import asdict, dataclass, replace
 import math
 from typing import Optional
 
@@ -574,6 +574,3 @@ def scene_from_dict(data):
                  contact_zone=data.get("contact_zone"),
                  units=Units(**data.get("units", {})))     # older summaries: b and E
 
-
-def settings_fields():
-    return [f.name for f in fields(Settings)]

@@ -29,7 +29,6 @@ THREADS = {"OMP_NUM_THREADS": "1"}
 
 CMD_STOP, CMD_SOLVE, CMD_OUTPUT, CMD_MAP = 0, 1, 2, 3   # as in freefem/exchange.idp
 _POLL_SECONDS = 0.05
-DEFAULT_TIMEOUT = 600.0    # seconds a worker may take to answer (Settings.worker_timeout)
 
 # what a worker's death by a signal most likely means
 _DEATHS = {signal.SIGXFSZ: "a file size limit was reached (ulimit -f)",
@@ -64,7 +63,7 @@ class Worker:
     """One FreeFEM process; ``name`` (its subdomain's) names it in messages, ``stem`` (by
     default the name) its FIFOs and log inside ``workdir``."""
 
-    def __init__(self, name, script, arguments, workdir, timeout=DEFAULT_TIMEOUT, stem=None):
+    def __init__(self, name, script, arguments, workdir, timeout, stem=None):
         self.name = name
         self.timeout = timeout
         stem = stem or name
@@ -134,10 +133,6 @@ class Worker:
         if i != len(values):
             raise WorkerError(f"worker {self.name} sent {len(values) - i} unexpected values")
         return arrays
-
-    def request(self, command, arrays, reply_arrays):
-        self.send(command, arrays)
-        return self.receive_arrays(reply_arrays)
 
     # -- lifetime -----------------------------------------------------------------------
     def stop(self, grace=5.0):
