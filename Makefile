@@ -1,7 +1,7 @@
 # Contact of elastic bodies with a thin partial coating: Robin DDM in FreeFEM + Python.
 #   make fig3 fig4 fig5   the paper's figures (results/figN.png, .pdf, _data.csv)
 #   make run     solve the default scene (shell model, h2 = b/8, E2 = E) into results/default
-#   make test    run the tests
+#   make test    run the tests (make test-fast: the everyday subset, under a minute)
 #   make bench   speed against accuracy (results/bench.csv, results/speed_accuracy.png)
 #   make stability  a sweep of 102 runs and maps of where each method converges
 #   make discrete   a cylinder over a coating in patches, both models (results/discrete.png)
@@ -13,7 +13,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test clean figures fig3 fig4 fig5 bench stability discrete adequacy
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -77,6 +77,11 @@ run: setup
 
 test: setup
 	$(PYTHON) -m pytest -q tests
+
+# The everyday subset: the forms, the scene and its units, hostile input, the loop's
+# pieces, one Robin-equals-monolithic check (under a minute); `make test` runs them all.
+test-fast: setup
+	$(PYTHON) -m pytest -q -m "not slow" tests
 
 # Speed against accuracy on the figure scenes (about 15 minutes; the fine references
 # are computed once into results/reference/): results/bench.csv, speed_accuracy.png;

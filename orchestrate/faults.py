@@ -1,5 +1,5 @@
 """Pause points, for the reliability tests to signal a run (or its workers) in a given
-phase of its life (tests/test_reliability.py).
+phase of its life (tests/run/test_reliability.py).
 
 With ORCHESTRATE_PAUSE_AT = a phase and ORCHESTRATE_PAUSE_FILE = a path, a run that
 reaches that phase writes the path and waits, at most PAUSE_SECONDS, until the path is

@@ -1,5 +1,5 @@
 """The paper's claims about its figures 3-5 (METHOD.md, "What the figures show"),
-measured on finished runs. tests/test_paper_claims.py turns each into a test;
+measured on finished runs. tests/studies/test_paper_claims.py turns each into a test;
 ``python -m studies.claims RUN ...`` prints the measurements.
 
 Distances between two stress curves on an interface are relative L2 distances over

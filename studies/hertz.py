@@ -1,5 +1,5 @@
 """A cylinder on an uncoated block under a force load against plane-strain Hertz (not a
-test; tests/test_hertz.py checks one size).
+test; tests/studies/test_hertz.py checks one size).
 
 Two bodies of the same material (E = 1, nu = 0.3): the indenter, whose lower face is a
 circle of radius R = 40 b, pressed with the total force F per unit width (both halves;

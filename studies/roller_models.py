@@ -1,5 +1,5 @@
 """A coated roller: the shell model against the 2D coating model as the coating thins
-(not a test; tests/test_roller_models.py checks two thicknesses).
+(not a test; tests/studies/test_roller_models.py checks two thicknesses).
 
 The scene is orchestrate/scenes/roller.toml: a roller of radius R = 16 b on a rigid
 shaft (bore 8 b), coated from its top x1 = 0 to x1 = 3 b (half model), pressed by a flat

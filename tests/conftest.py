@@ -11,7 +11,7 @@ sys.path.insert(0, str(PROJECT_DIR))
 
 from orchestrate.workers import freefem  # noqa: E402
 
-TESTS_FREEFEM_DIR = Path(__file__).resolve().parent / "freefem"
+TESTS_FREEFEM_DIR = Path(__file__).resolve().parent / "forms" / "freefem"
 
 # A steel cylinder on a steel block with a hard coating, in mm and MPa (b = 2.5 mm: the
 # paper's bodies, 4 b by 8 b); a contact about 1.8 mm wide, 11 interface elements.
@@ -53,7 +53,7 @@ def steel_scene(path, **values):
 
 @pytest.fixture
 def run_freefem(tmp_path):
-    """Run tests/freefem/<script> with arguments; return the folder it ran in.
+    """Run tests/forms/freefem/<script> with arguments; return the folder it ran in.
 
     The script finds the project's .idp files on FreeFEM's include path; a failing
     script fails the test with the end of its log."""
@@ -95,3 +95,17 @@ def coating_2d_run(tmp_path_factory):
     scene = paper_scene(h2=0.125, E2=5.0, model="elastic")
     solve(scene, Settings(), str(folder))
     return scene, folder
+
+
+def processes_mentioning(text):
+    """PIDs of live processes whose command line contains ``text``."""
+    pids = []
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/cmdline", "rb") as f:
+                    if text.encode() in f.read():
+                        pids.append(int(entry))
+            except OSError:
+                pass
+    return pids

@@ -32,7 +32,7 @@ exchange of Lions for the penalised laws: each side receives gamma times the
 displacement the interface law asks of it, plus the neighbour's traction weighted by
 (1 - gamma theta). For gamma = 1/theta the neighbour's traction drops out and the data
 are exactly those of (21)-(23); for any gamma the fixed point is the same discrete
-penalised problem (16) (tests/test_monolithic.py checks it).
+penalised problem (16) (tests/ddm/test_monolithic.py checks it).
 """
 
 import math

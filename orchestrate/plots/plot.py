@@ -32,7 +32,7 @@ from orchestrate.model.scene import scene_from_dict  # noqa: E402
 # about the contact's half-width (the base's elastic field) and, under a stiff coating
 # that spreads the load, by a few coating thicknesses (its shear lag); the larger of the
 # two, never beyond the face. On the example scenes the bond's stresses beyond it, away
-# from patch ends, are within a tenth of their peak (tests/test_plot.py).
+# from patch ends, are within a tenth of their peak (tests/run/test_plot.py).
 HALF_WIDTHS = 1.0        # of the contact's half-width
 THICKNESSES = 3.0        # of the thickest patch
 Y_PAD = 0.08             # of the y range, above and below

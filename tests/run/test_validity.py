@@ -1,0 +1,185 @@
+"""Warnings where a run leaves what the tool models (orchestrate/run/validity.py).
+
+Each warning is produced by a scene that triggers it, with the measured value it reports
+checked against the run's own numbers, and a scene inside the model has none; the
+paper's figure scenes are checked in tests/studies/test_paper_claims.py. --strict turns warnings
+into exit status 5, the results still written.
+"""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from orchestrate.errors import RunFailed
+from orchestrate.model.scene_file import scene_and_settings
+from orchestrate.run.solve import solve
+from orchestrate.run.validity import (COATING_SHARE, DESCENT_LIMIT, ELEMENTS_ACROSS,
+                                  MISMATCH_LIMIT_DEG, MODULUS_SHARE, STRAIN_LIMIT)
+from tests.conftest import PROJECT_DIR, steel_scene
+
+pytestmark = pytest.mark.slow       # not in the everyday subset (make test-fast)
+
+CYLINDER = PROJECT_DIR / "orchestrate" / "scenes" / "cylinder.toml"
+
+# name: (scene file or None for the paper's, overrides, settings)
+SCENES = {
+    "steel": ("steel", {}, {}),
+    # moduli in GPa under the file's MPa label: 1000 times too soft
+    "steel in GPa labelled MPa": ("steel_gpa", {}, {}),
+    # a cylinder pressed until its contact spreads over the whole block
+    "overloaded cylinder": (CYLINDER, {"load.force": 1.5}, {}),
+    "elements as long as the contact": ("steel", {}, {"element_size": "2.5 mm"}),
+    "a soft thick coating as a shell": (None, {"h2": 1.0, "E2": 0.2, "model": "shell"}, {}),
+    "a shell of Poisson ratio 0.45": (None, {"nu2": 0.45, "model": "shell"}, {}),
+    "a coating 31 % of its base": (None, {"h2": 2.5, "model": "elastic"}, {}),
+    "a patch ending under the contact": (CYLINDER, {"coating.end": 0.3, "load.force": 0.01},
+                                         {}),
+}
+
+
+@pytest.fixture(scope="module")
+def summaries(tmp_path_factory):
+    """Each scene's summary, solved once."""
+    folder = tmp_path_factory.mktemp("validity")
+    files = {"steel": folder / "steel.toml", "steel_gpa": folder / "steel_gpa.toml"}
+    steel_scene(files["steel"])
+    steel_scene(files["steel_gpa"], E=210.0, E2=450.0)
+    found = {}
+    for number, (name, (path, overrides, settings)) in enumerate(SCENES.items()):
+        scene, settings = scene_and_settings(files.get(path, path), overrides, settings)
+        try:
+            found[name] = solve(scene, settings, folder / f"run{number}")
+        except RunFailed as error:           # a test then says which scene
+            found[name] = error.summary
+    return found
+
+
+def _warnings(summary):
+    assert summary["converged"], summary["reason"]
+    return {w["code"]: w for w in summary["warnings"]}
+
+
+def test_a_scene_inside_the_model_has_no_warning(summaries):
+    assert _warnings(summaries["steel"]) == {}
+
+
+def test_moduli_in_the_wrong_unit_are_said(summaries):
+    summary = summaries["steel in GPa labelled MPa"]
+    found = _warnings(summary)
+    assert found["stress_near_modulus"]["value"] > MODULUS_SHARE
+    assert found["large_strain"]["value"] == found["stress_near_modulus"]["value"]
+    assert found["large_descent"]["value"] == pytest.approx(summary["descent"] / 20.0)
+
+
+def test_a_contact_at_the_blocks_edge_is_said_with_what_it_brings(summaries):
+    summary = summaries["overloaded cylinder"]
+    found = _warnings(summary)
+    assert summary["contact_zones"][-1][1] == 4.0                   # the block's edge
+    assert found["contact_at_edge"]["value"] == found["contact_at_edge"]["limit"] == 4.0
+    assert found["normal_mismatch"]["value"] == summary["normal_mismatch_deg"]
+    assert found["normal_mismatch"]["value"] > MISMATCH_LIMIT_DEG
+    assert found["large_descent"]["value"] == pytest.approx(summary["descent"] / 8.0)
+    assert found["large_descent"]["value"] > DESCENT_LIMIT
+    peak = summary["answers"]["contact"]["peak_pressure"]["value"]
+    assert found["large_strain"]["value"] >= peak / 1.0 > STRAIN_LIMIT   # E = 1
+
+
+def test_a_contact_zone_of_few_elements_is_said(summaries):
+    summary = summaries["elements as long as the contact"]
+    found = _warnings(summary)
+    (start, end), = summary["contact_zones"]
+    # a half model's zone from the axis: its whole width is twice; elements of 2.5 mm
+    assert found["coarse_contact"]["value"] == pytest.approx(2 * (end - start) / 2.5)
+    assert found["coarse_contact"]["value"] < ELEMENTS_ACROSS
+
+
+def test_a_shell_chosen_where_its_estimate_is_far_off_is_said(summaries):
+    summary = summaries["a soft thick coating as a shell"]
+    found = _warnings(summary)
+    assert found["model_error"]["value"] > summary["settings"]["model_tolerance"]
+    assert set(found) == {"model_error"}
+
+
+def test_a_shell_outside_the_estimates_range_is_said(summaries):
+    found = _warnings(summaries["a shell of Poisson ratio 0.45"])
+    assert set(found) == {"model_uncalibrated"}
+    assert "0.45" in found["model_uncalibrated"]["message"]
+
+
+def test_a_coating_thick_against_its_base_is_said(summaries):
+    found = _warnings(summaries["a coating 31 % of its base"])
+    assert found["thick_coating"]["value"] == pytest.approx(2.5 / 8.0)
+    assert found["thick_coating"]["limit"] == COATING_SHARE
+
+
+def test_a_contact_peak_at_a_patch_end_is_said_singular(summaries):
+    summary = summaries["a patch ending under the contact"]
+    found = _warnings(summary)
+    ends = summary["answers"]["contact"]["at_patch_ends"]["peak_pressure"]
+    away = summary["answers"]["contact"]["peak_pressure"]
+    assert ends["end_zone"] and not away["end_zone"]
+    assert abs(ends["x1"] - 0.3) <= 0.25 * 0.3                # within the capped end zone
+    assert found["singular_contact_peak"]["value"] == pytest.approx(
+        ends["value"] / away["value"])
+
+
+def test_every_warning_passed_its_limit(summaries):
+    for name, summary in summaries.items():
+        for warning in summary["warnings"]:
+            if warning["value"] is None:
+                continue
+            if warning["code"] in ("coarse_contact", "coarse_mesh"):   # too few: below it
+                assert warning["value"] < warning["limit"], (name, warning)
+            elif warning["code"] == "contact_at_edge":
+                assert warning["value"] == warning["limit"], (name, warning)
+            else:
+                assert warning["value"] > warning["limit"], (name, warning)
+
+
+def test_strict_refuses_a_run_warned_before_any_work_with_status_5(tmp_path):
+    """A warning known before any work (a coating thicker than a quarter of its base):
+    --strict refuses the run, exit status 5, nothing written; without it the run goes
+    and says so."""
+    command = [sys.executable, "-m", "orchestrate", "solve", "--quiet", "--h2", "2.5",
+               "--model", "elastic"]
+    strict = subprocess.run([*command, "--strict", "--out", str(tmp_path / "strict")],
+                            cwd=PROJECT_DIR, capture_output=True, text=True, timeout=300)
+    assert strict.returncode == 5, strict.stderr
+    assert "warning (thick_coating)" in strict.stderr and "before any work" in strict.stderr
+    assert not (tmp_path / "strict").exists()
+    lenient = subprocess.run([*command, "--out", str(tmp_path / "lenient")], cwd=PROJECT_DIR,
+                             capture_output=True, text=True, timeout=300)
+    assert lenient.returncode == 0 and "warning (thick_coating)" in lenient.stderr
+
+
+def test_strict_exits_with_status_5_after_a_run_warned_and_writes_its_results(tmp_path):
+    """Warnings the run finds (its contact at the block's edge): --strict exits with 5,
+    the results written."""
+    out = tmp_path / "strict"
+    strict = subprocess.run([sys.executable, "-m", "orchestrate", "solve", "--quiet",
+                             "--scene", str(CYLINDER), "--force", "1.5", "--model", "elastic",
+                             "--strict", "--out", str(out)], cwd=PROJECT_DIR,
+                            capture_output=True, text=True, timeout=300)
+    assert strict.returncode == 5, strict.stderr
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["converged"] and "contact_at_edge" in [w["code"] for w in summary["warnings"]]
+    assert (out / "contact.csv").is_file()
+
+
+def test_a_mesh_too_coarse_for_the_predicted_contact_is_said_before_any_work(tmp_path):
+    """Elements of 2.5 mm for a contact predicted 1.8 mm wide: said before any work (the
+    limit, 10 elements across, is studies/resolution.py's study), the count from
+    the a priori half-width, and again by the run from the zone it found."""
+    from orchestrate.model.estimate import contact_half_width
+    from orchestrate.run.solve import prepare
+
+    scene, settings = scene_and_settings(steel_scene(tmp_path / "steel.toml"), {},
+                                         {"element_size": "2.5 mm"})
+    plan = prepare(scene, settings)
+    (warning,) = [w for w in plan.warnings if w["code"] == "coarse_mesh"]
+    assert warning["value"] == pytest.approx(2 * contact_half_width(scene) / 2.5, rel=0.05)
+    assert warning["limit"] == ELEMENTS_ACROSS
+    fine = prepare(*scene_and_settings(steel_scene(tmp_path / "steel.toml")))
+    assert [w for w in fine.warnings if w["code"] == "coarse_mesh"] == []
