@@ -60,7 +60,7 @@ def test_a_fresh_venv_installs_the_package_and_solves_from_elsewhere(tmp_path, a
     assert found["module"] == str(PROJECT_DIR / "orchestrate" / "__init__.py")
     assert found["type"] == "DataFrame"
     # the same run as in this process (same scene, settings, meshes) up to the solvers'
-    # round-off, which is not bit-reproducible between processes (measured 7e-13)
+    # round-off, which is not bit-reproducible between processes
     np.testing.assert_allclose(found["sigma_n"], api_result.contact.sigma_n.to_numpy(),
                                rtol=1e-9)
     assert found["peak"] == max(-np.array(found["sigma_n"]))

@@ -37,7 +37,7 @@ def test_a_run_started_from_its_own_answer_stops_at_once_with_it(coating_2d_run,
     scene, cold = coating_2d_run
     again = solve(scene, Settings(), str(tmp_path / "again"), start_from=cold)
     assert again["started_from"] == str(cold)
-    assert again["iterations"] <= 6                  # measured 4: the stopping test's pairs
+    assert again["iterations"] <= 6      # the stopping test's secant pairs (robin.py), no more
     assert again["peak_contact_stress"] == pytest.approx(
         _summary(cold)["peak_contact_stress"], rel=TOLERANCE)
 
