@@ -1,5 +1,6 @@
 # Contact of elastic bodies with a thin partial coating: Robin DDM in FreeFEM + Python.
-#   make fig3 fig4 fig5   the paper's figures (results/figN.png, .pdf, _data.csv)
+#   make fig3 fig4 fig5   the paper's figures (results/figN.png, .pdf, _data.csv) and its
+#                         claims checked on their runs (results/claims.md)
 #   make run     solve the default scene (shell model, h2 = b/8, E2 = E) into results/default
 #   make test    run the tests (make test-fast: the everyday subset, under a minute)
 #   make bench   speed against accuracy (results/bench.csv, results/speed_accuracy.png)
@@ -7,7 +8,8 @@
 #   make discrete   a cylinder over a coating in patches, both models (results/discrete.png)
 #   make adequacy   where each coating model is adequate, and model = "auto" checked
 #                   on 36 held-out scenes (results/adequacy/)
-# Both install what they need first (FreeFEM from Debian, a pinned Python venv).
+# Both install what they need first (FreeFEM from Debian, a pinned Python venv). Every
+# study writes a report beside its tables (results/*.md: what it measured, computed).
 
 PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
@@ -30,9 +32,14 @@ DRAWING_SOURCES := studies/figures.py studies/figure_scenes.py studies/figure_sw
 SOLVER_SOURCES := $(wildcard freefem/*.idp freefem/*.edp orchestrate/*.py orchestrate/*/*.py)
 
 FIGURES := results/fig3.png results/fig4.png results/fig5.png
+# the paper's claims checked on the figures' runs
+CLAIMS := results/claims.md
 
 figures: fig3 fig4 fig5
-fig3 fig4 fig5: $(FIGURES) ; @:
+fig3 fig4 fig5: $(FIGURES) $(CLAIMS) ; @:
+
+$(CLAIMS): $(FIGURE_RUNS) studies/claims.py studies/report.py | setup
+	$(PYTHON) -m studies.claims results/figures
 
 $(FIGURE_RUNS) $(FIGURES) &: $(FIGURE_SWEEP) $(SOLVER_SOURCES) $(DRAWING_SOURCES) | setup
 	@if [ ! -f $(FIGURE_RUNS) ] || [ -n "$$(find $(SOLVER_SOURCES) -newer $(FIGURE_RUNS))" ]; \

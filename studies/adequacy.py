@@ -16,7 +16,9 @@ the paper's mesh against the mesh-converged 2D coating model):
 For the held-out scenes the automatic choice (``model = "auto"``) is also run through the
 Robin loop, timed against the model it chose run directly.
 
-Writes results/adequacy/{calibration,held_out}.csv, validation.csv and adequacy.png.
+Writes results/adequacy/{calibration,held_out}.csv, calibration_judged.csv,
+validation.csv, adequacy.png and the report report.md (the held-out verdict, where each
+1D model is within the tolerance on the calibration grid, the estimate's misses).
 
     python -m studies.adequacy            # both sets, the map and the validation
     python -m studies.adequacy --fit      # the estimate's constants from calibration
@@ -43,6 +45,8 @@ from orchestrate.model import Settings, scene_from_dict  # noqa: E402
 from orchestrate.paths import SCENES_DIR
 from orchestrate.model import apply_overrides, load_scene, paper_scene  # noqa: E402
 from orchestrate.run import solve_into as solve  # noqa: E402
+from studies.report import (Column, Report, command_line, fraction_of_E,  # noqa: E402
+                            listing, percent_g, span)
 
 OUT_DIR = RESULTS_DIR / "adequacy"
 GRID_HEIGHTS = (1 / 32, 1 / 16, 1 / 8, 1 / 4, 1 / 2, 1.0)
@@ -281,7 +285,7 @@ def _within_columns(table):
 
 
 def verdict(validation):
-    """The targets of docs/findings.md's table, from the validation."""
+    """The held-out verdict (report.md's findings), from the validation."""
     within = pd.concat([validation[column] for column in _within_columns(validation)]).dropna()
     not_estimated = validation.shell_contact_estimated.isna()
     return {"scenes": len(validation),
@@ -318,7 +322,7 @@ def draw_map(calibration, path):
     moduli = np.geomspace(0.1, 10.0, 31)
     choice = choice_map(heights, moduli)
     scenes = [[paper_scene(h2=h2, E2=E2) for h2 in heights] for E2 in moduli]
-    estimate = {model: np.array([[estimate.worst_error(
+    estimated = {model: np.array([[estimate.worst_error(
         estimate.estimated_errors(scene, scene.coatings[0])[model])
         for scene in row] for row in scenes]) for model in ONE_D}
     colours = ListedColormap(["#d6e9fb", "#ddf0dd", "#eeeeee"])
@@ -332,7 +336,7 @@ def draw_map(calibration, path):
         for h2, E2, value in zip(calibration.h2, calibration.E2, measured):
             axis.annotate(f"{100 * value:.2g}", (h2 / a, E2), textcoords="offset points",
                           xytext=(0, 8), ha="center", fontsize=6)
-        axis.contour(heights / a, moduli, estimate[model], levels=[0.01], colors="k",
+        axis.contour(heights / a, moduli, estimated[model], levels=[0.01], colors="k",
                      linestyles="--")
         axis.set(xscale="log", yscale="log", xlabel="h2 / a (a: estimated contact half-width)",
                  title=f"{model}: labels in %")
@@ -345,6 +349,121 @@ def draw_map(calibration, path):
                   bbox_to_anchor=(0.45, -0.06))
     figure.savefig(path, dpi=150, bbox_inches="tight")
     plt.close(figure)
+
+
+# ---- the report ---------------------------------------------------------------------------
+
+MODEL_NAMES = {"shell": "Timoshenko shell", "stretch_shell": "stretch shell",
+               "elastic": "2D coating"}
+
+
+def _reasons(table):
+    """Why each row's first patch is not estimated (None: it is)."""
+    return [estimate.not_estimated(s, s.coatings[0]) for s in _scenes(table)]
+
+
+def within_tolerance_up_to(calibration, tolerance):
+    """Per grid E2 and 1D model: the largest h2/a of the grid up to which (it and every
+    thinner h2) the model's measured error is within ``tolerance``."""
+    grid = {f"paper h2={h2:g} E2={E2:g}": (h2, E2) for h2 in GRID_HEIGHTS for E2 in GRID_MODULI}
+    rows = calibration[calibration.label.isin(grid)]
+    a = estimate.contact_half_width(paper_scene())
+    out = []
+    for E2 in GRID_MODULI:
+        line = {"E2": E2}
+        for model in ONE_D:
+            found = None
+            for h2 in GRID_HEIGHTS:                       # thinnest first
+                row = rows[rows.label == f"paper h2={h2:g} E2={E2:g}"]
+                if row.empty:
+                    break
+                if float(worst_model_part(row, model).iloc[0]) > tolerance:
+                    break
+                found = h2
+            line[model] = None if found is None else found / a
+        out.append(line)
+    return out
+
+
+def write_report(calibration, held_out, validation, out, command="python -m studies.adequacy"):
+    tolerance = Settings().model_tolerance
+    report = Report("Where each coating model is adequate, and model = \"auto\"", command,
+                    data=["calibration.csv", "held_out.csv", "validation.csv"])
+    report.text("Every coating model on the paper's mesh against the mesh-converged 2D model "
+                "(studies/model_errors.py; peaks away from the patches' ends). A 1D model's "
+                "error is the larger of the peak contact and bond stresses' relative errors, "
+                "with the 2D model's own error on the same mesh taken out; the tolerance is "
+                f"the default {percent_g(tolerance)}. Map: adequacy.png.")
+    if validation is not None and len(validation):
+        report.section("The held-out scenes")
+        reasons = _reasons(held_out) if held_out is not None else [None] * len(validation)
+        chosen = validation.chosen.map(
+            lambda models: "/".join(MODEL_NAMES.get(m, m) for m in sorted(set(models.split("/"))))
+        ).value_counts()
+        not_made = [(label, why) for label, why in zip(validation.label, reasons) if why]
+        found = verdict(validation)
+        report.finding(
+            f"{found['scenes']} scenes neither the forms nor the constants saw: auto took "
+            + listing(f"the {models} model in {n}" for models, n in chosen.items())
+            + (f"; the estimate is not made in {len(not_made)} (" + "; ".join(
+                f"{label}: {why}" for label, why in not_made) + "), where auto takes the 2D "
+               "model" if not_made else "") + ".")
+        report.finding(
+            f"The chosen model is within the {percent_g(tolerance)} tolerance in "
+            f"{int(validation.meets_tolerance.sum())} of {len(validation)} scenes (largest "
+            f"measured error {percent_g(found['worst_chosen_error'])}). Auto's wall time over "
+            f"the chosen model's run directly: median {found['median_cost_ratio']:.2f}, worst "
+            f"{found['worst_cost_ratio']:.2f} (one run each on a shared machine: noise).")
+        rows, misses = [], []
+        for model in ONE_D:
+            for quantity in QUANTITIES:
+                name = f"{model}_{quantity}"
+                judged = validation[f"{name}_within"].dropna()
+                rows.append({"model": model, "quantity": quantity, "judged": len(judged),
+                             "within": int(judged.sum())})
+                for i in judged.index[judged == 0]:
+                    misses.append(f"{validation.label[i]} ({MODEL_NAMES[model]}, {quantity} "
+                                  f"stress): {percent_g(validation[f'{name}_measured'][i])} "
+                                  f"measured, {percent_g(validation[f'{name}_estimated'][i])} "
+                                  "estimated")
+        report.table(rows, [
+            Column("model", "model", MODEL_NAMES.get), Column("quantity", "quantity"),
+            Column("judged", "judged", "{:g}", f"scenes where the measured error exceeds "
+                   f"{percent_g(JUDGED)} and the estimate is made"),
+            Column("within", f"within {FACTOR:g}x", "{:g}",
+                   "of those, the estimate within a factor of the measured error")])
+        report.finding(f"The estimate is within {FACTOR:g}x of the measured model error in "
+                       f"{sum(r['within'] for r in rows)} of {sum(r['judged'] for r in rows)} "
+                       f"judged cases" + ("; the misses: " + "; ".join(misses) if misses
+                                          else "") + ".")
+    if calibration is not None and len(calibration):
+        report.section("The calibration grid: where each 1D model is within the tolerance")
+        up_to = within_tolerance_up_to(calibration, tolerance)
+        report.table(up_to, [Column("E2", "E2", fraction_of_E)] + [
+            Column(model, f"{MODEL_NAMES[model]}: h2/a up to",
+                   lambda v: "none" if v is None else f"{v:.3g}",
+                   "the thickest grid h2 (over a, the estimated half-width) up to which "
+                   "every thinner one is within the tolerance" if model == ONE_D[0] else "")
+            for model in ONE_D])
+        report.finding("Within the tolerance on the paper's scene: " + "; ".join(
+            f"the {MODEL_NAMES[model]} up to h2/a = " + ", ".join(
+                f"{'none' if r[model] is None else f'{r[model]:.2g}'} ({fraction_of_E(r['E2'])})"
+                for r in up_to) for model in ONE_D) + ".")
+        reasons = _reasons(calibration)
+        kinds = {}
+        for i, why in zip(calibration.index, reasons):
+            if why:
+                kind = ("a coating Poisson ratio outside the calibrated range"
+                        if why.startswith("coating Poisson") else
+                        "a patch end within the contact" if why.startswith("patch end") else why)
+                kinds.setdefault(kind, []).append(i)
+        for kind, index in kinds.items():
+            part = calibration.loc[index]
+            contact = model_part(part, "shell", "contact")
+            report.finding(f"Where the estimate is not made ({kind}: {len(index)} calibration "
+                           f"scenes), the Timoshenko shell's contact-stress error is "
+                           f"{span(contact, lambda v: f'{100 * v:+.2g} %')}.")
+    return report.write(out)
 
 
 def main(argv=None):
@@ -374,7 +493,8 @@ def main(argv=None):
         print(validation[["label", "shell_contact_measured", "shell_contact_estimated",
                           "stretch_shell_contact_measured", "stretch_shell_contact_estimated",
                           "chosen", "chosen_measured", "cost_ratio"]].to_string(index=False))
-        print(verdict(validation))
+        print(write_report(calibration, held_out, validation, OUT_DIR / "report.md",
+                           command_line("studies.adequacy", argv)))
 
 
 if __name__ == "__main__":

@@ -7,6 +7,8 @@
    on its first FEW: the marginal cost of a scene is the difference over the difference
    in scenes.
 
+Writes results/session.csv, session_sweep.csv and the report results/session.md.
+
     python -m studies.bench_session     # prints the tables, writes results/session*.csv
 """
 
@@ -19,6 +21,7 @@ from pathlib import Path
 import pandas as pd
 
 from studies.paths import RESULTS_DIR
+from studies.report import Column, Report, command_line, seconds
 from orchestrate.workers import Session
 from orchestrate.run import solve_into as solve
 from orchestrate.sweeps import load_sweep, named_points, point_scene, run_sweep
@@ -62,6 +65,40 @@ def sweep_seconds(points, out):
     return time.perf_counter() - start
 
 
+def write_report(both, sweep, out, command="python -m studies.bench_session"):
+    report = Report("Workers kept from scene to scene", command,
+                    data=["session.csv", "session_sweep.csv"])
+    report.text("The figure scenes one after the other in one process, each with workers "
+                "of its own (alone), then all in one Session of kept workers; one run each "
+                "on a shared 2-core machine.")
+    ratio = both.wall_s_session.median() / both.wall_s_alone.median()
+    report.finding(f"Median wall time per scene: {seconds(both.wall_s_alone.median())} alone, "
+                   f"{seconds(both.wall_s_session.median())} in a session (ratio "
+                   f"{ratio:.2f}); median set-up {seconds(both.setup_s_alone.median())} "
+                   f"against {seconds(both.setup_s_session.median())}. The answers differ by "
+                   f"at most {both.peak_difference.max():.1e} (peak contact stress, relative).")
+    report.table(both, [
+        Column("scene", "scene"),
+        Column("wall_s_alone", "wall, alone", seconds),
+        Column("wall_s_session", "wall, session", seconds),
+        Column("setup_s_alone", "set-up, alone", seconds,
+               "meshing and starting (or reusing) the workers"),
+        Column("setup_s_session", "set-up, session", seconds),
+        Column("iterations_alone", "iterations", "{:g}"),
+        Column("kept_session", "workers kept", "{:g}", "workers the session reused"),
+        Column("peak_difference", "peak difference", "{:.1e}",
+               "relative difference of the peak contact stress, session against alone")])
+    report.section("The figure sweep")
+    report.text("The sweep of the figure scenes (2 jobs, warm starts, each job a session), "
+                "on its first few scenes and on all: the marginal cost of a scene is the "
+                "difference in time over the difference in scenes.")
+    report.table(sweep, [Column("scenes", "scenes"), Column("wall_s", "wall", seconds)])
+    marginal = sweep[sweep.scenes == "marginal per scene"].wall_s
+    if len(marginal):
+        report.finding(f"A scene more costs the sweep {seconds(marginal.iloc[0])}.")
+    return report.write(out)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=str(RESULTS_DIR))
@@ -77,10 +114,6 @@ def main(argv=None):
                "loop_s_alone", "loop_s_session", "iterations_alone", "kept_session",
                "peak_difference"]
     print(both[columns].to_string(index=False, float_format=lambda v: f"{v:.3g}"))
-    print(f"\nmedian wall per scene: {alone.wall_s.median():.3f} s alone, "
-          f"{kept.wall_s.median():.3f} s in a session (ratio "
-          f"{kept.wall_s.median() / alone.wall_s.median():.2f}); largest peak difference "
-          f"{both.peak_difference.max():.1e}")
     with tempfile.TemporaryDirectory() as few, tempfile.TemporaryDirectory() as every:
         t_few, t_all = sweep_seconds(points[:FEW], few), sweep_seconds(points, every)
     marginal = (t_all - t_few) / (len(points) - FEW)
@@ -90,6 +123,8 @@ def main(argv=None):
     os.makedirs(args.out, exist_ok=True)
     both.to_csv(os.path.join(args.out, "session.csv"), index=False)
     sweep.to_csv(os.path.join(args.out, "session_sweep.csv"), index=False)
+    print(write_report(both, sweep, os.path.join(args.out, "session.md"),
+                       command_line("studies.bench_session", argv)))
 
 
 if __name__ == "__main__":

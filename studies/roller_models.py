@@ -38,6 +38,8 @@ at the symmetry axis and grow with the interface's refinement (node-to-node wigg
 as large as the model difference there and picked up by the peak. At 1e-9 the curves
 are smooth, for 1.3-1.6 times the iterations.
 
+Writes results/roller_models.csv and the report results/roller_models.md.
+
     python -m studies.roller_models                  # E2 = E, 5E, E/5; R/16 ... R/2048
     python -m studies.roller_models --E2 1 --divisors 16 32 64 --eps-u 1e-6
 """
@@ -52,6 +54,8 @@ import pandas as pd
 
 from orchestrate.mesh import simpson
 from studies.paths import RESULTS_DIR
+from studies.report import (Column, Report, command_line, fraction_of_E, percent,
+                            seconds, signed_percent)
 from orchestrate.model import Settings
 from orchestrate.paths import SCENES_DIR
 from orchestrate.model import apply_overrides, load_scene
@@ -223,6 +227,52 @@ COLUMNS = ["E2", "R_over_h2", "h2", "peak_2d", "peak_diff", "peak_diff_rate", "c
            "coating_dofs_shell", "coating_dofs_2d", "iterations_shell", "iterations_2d"]
 
 
+def write_report(table, out, command="python -m studies.roller_models"):
+    report = Report("A coated roller: the shell against the 2D coating", command,
+                    data=[os.path.basename(os.path.splitext(out)[0]) + ".csv"])
+    report.text("orchestrate/scenes/roller.toml (R = 16 b), each coating thickness h2 and "
+                "modulus E2 solved with the patch a shell and a 2D body; the two answers "
+                "compared (relative differences, shell against 2D). Rates: per halving of "
+                "h2, log2 of the ratio of a difference at the thicker h2 to this one "
+                "(1: the difference halves with h2).")
+    ordered = table.sort_values(["E2", "h2"], ascending=[True, False])
+    report.table(ordered, [
+        Column("E2", "E2", fraction_of_E), Column("R_over_h2", "R/h2", "{:g}"),
+        Column("peak_2d", "2D peak (E)", "{:.4g}", "the 2D model's peak contact stress"),
+        Column("peak_diff", "peak", signed_percent, "shell's peak / 2D's - 1"),
+        Column("peak_diff_rate", "rate", "{:.2f}"),
+        Column("contact_l2", "contact L2", percent, "relative L2 distance of sigma_12n "
+               "over the contact faces"),
+        Column("contact_l2_core", "contact L2, core", percent, "the same on s < "
+               f"{CORE:g} a, away from the contact's edge"),
+        Column("bond_l2", "bond L2", percent, "the same for sigma_23n over the bond"),
+        Column("interp_floor", "interp. floor", percent, "what interpolation between "
+               "unlike interface points alone makes of a distance"),
+        Column("time_shell", "shell", seconds, "wall time"),
+        Column("time_2d", "2D", seconds, "wall time"),
+        Column("dofs_2d", "2D dofs", "{:g}", "unknowns of all bodies, 2D model")])
+    for E2, part in ordered.groupby("E2", sort=False):
+        done = part[part.converged.astype(bool)] if "converged" in part else part
+        if len(done) < 2:
+            continue
+        rates = done.peak_diff_rate.dropna()
+        report.finding(
+            f"E2 = {fraction_of_E(E2)}: the peaks differ by "
+            + ", ".join(f"{percent(abs(r.peak_diff))} (R/{r.R_over_h2:g})"
+                        for r in done.itertuples())
+            + f"; the contact-stress curves by {percent(done.contact_l2.iloc[0], 1)} -> "
+            f"{percent(done.contact_l2.iloc[-1], 1)} in L2. Median rate per halving "
+            f"{rates.median():.2f}" + (" (the difference halves with h2, as on the "
+                                       "paper's flat coating)" if 0.8 <= rates.median() <= 1.2
+                                       else "") + ".")
+    failed = table[~table.converged.astype(bool)] if "converged" in table else table.iloc[:0]
+    if len(failed):
+        report.finding(f"{len(failed)} thicknesses did not converge with both models: "
+                       + ", ".join(f"E2 = {fraction_of_E(r.E2)}, R/{r.R_over_h2:g}"
+                                   for r in failed.itertuples()) + ".")
+    return report.write(out)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--E2", type=float, nargs="+", default=list(MODULI),
@@ -233,7 +283,8 @@ def main(argv=None):
                         help=f"the Robin loop's stopping test (default {EPS_U:g}, see above)")
     parser.add_argument("--mesh-level", type=int, default=1)
     parser.add_argument("--keep", default=None, help="keep every run in this folder")
-    parser.add_argument("--out", default=str(RESULTS_DIR / "roller_models.csv"))
+    parser.add_argument("--out", default=str(RESULTS_DIR / "roller_models.csv"),
+                        help="the table; the report goes beside it (roller_models.md)")
     args = parser.parse_args(argv)
     R = radius()
     settings = Settings(eps_u=args.eps_u, mesh_level=args.mesh_level)
@@ -251,7 +302,9 @@ def main(argv=None):
     with pd.option_context("display.width", 250, "display.max_columns", 40,
                            "display.float_format", "{:.4g}".format):
         print(table[shown].to_string(index=False))
-    print(f"\nwritten to {args.out}")
+    report = write_report(table, os.path.splitext(args.out)[0] + ".md",
+                          command_line("studies.roller_models", argv))
+    print(f"\nwritten to {args.out} and {report}")
 
 
 if __name__ == "__main__":
