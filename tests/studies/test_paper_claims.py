@@ -4,7 +4,7 @@ Every figure scene is solved (24 runs, both coating models, the default paper me
 by what `make fig3 fig4 fig5` runs, which draws the three figures too, and each claim
 becomes an assertion on the computed data: an ordering, a trend, the place of a maximum
 (studies/claims.py measures them). Where our data contradict a claim, the test
-asserts what the data show and says why; docs/findings.md, "The paper's claims", gives the
+asserts what the data show and says why; results/claims.md (studies/claims.py) gives the
 numbers."""
 
 import itertools
@@ -361,7 +361,7 @@ def test_fig5_contradiction_stiff_thin_coating_has_one_maximum(runs):
 def test_fig5_stiff_coating_maximum_moves_from_S23_to_S12_as_h2_drops(runs):
     """The paper: a smaller h2 raises the maximum near S12 and lowers the one near S23.
     From h2 = b to b/4 (the thinnest with both) it does; in between it does not: both
-    grow from b to b/2 (+36 % at S12, +8 % at S23), then fall. docs/findings.md gives the numbers."""
+    grow from b to b/2, then fall: results/claims.md gives the numbers."""
     thick, middle, thin = (_edge_maxima(runs, h2, 5.0) for h2 in (1.0, 0.5, 0.25))
     assert thin[1.0] > thick[1.0] and thin[0.0] < thick[0.0]
     assert middle[1.0] > thick[1.0] and middle[0.0] > thick[0.0]
