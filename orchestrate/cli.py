@@ -24,7 +24,8 @@ from orchestrate.errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT
                      EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure,
                      WarnedBeforeWork)
 from orchestrate.workers.freefem import FreeFemMissing
-from orchestrate.model.scene import INNER_SOLVES, METHODS, MODEL_CHOICES, WORKERS, Settings
+from orchestrate.model.scene import (INNER_SOLVES, KNOB_RANGES, METHODS, MODEL_CHOICES,
+                                     WORKERS, Settings)
 from orchestrate.model.scene_file import SETTINGS_LENGTHS, SHORTHANDS, scene_and_settings
 
 EXIT_STATUSES = """exit status:
@@ -39,15 +40,17 @@ EXIT_STATUSES = """exit status:
   130, 143, 129, 131   interrupted by SIGINT, SIGTERM, SIGHUP, SIGQUIT"""
 
 _SETTINGS_HELP = {
-    "theta": "penalty parameter (b/E); default: the paper's 1e-3 for its loop, else 4e-3 "
-             "times the interface element's length (2.5e-4 on the paper's mesh)",
+    "theta": "penalty parameter (b/E); default: the paper's 1e-3 for its loop, else "
+             "--theta-per-length times the interface element's length",
     "method": "Robin loop: accelerated active-set loop, or the paper's fixed relaxation",
     "inner_solve": "active-set loop: each contact set's fixed point solved directly from "
                    "the subdomains' Robin maps, iterated, iterated with a coarse-mesh "
                    "correction (mesh level 1; on level 1, interface elements twice as "
                    "long), or auto: direct where the maps cost less, else two-level on a "
-                   "fine mesh",
-    "robin": "Robin parameter gamma (E/b); default 1/theta for the paper's loop, else 2",
+                   "fine mesh (the knobs below)",
+    "robin": "Robin parameter gamma (E/b); default 1/theta for the paper's loop, else "
+             "--robin-one-level, with two levels --robin-two-level-per-length over the "
+             "element length",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
     "L divides every mesh size by L", "element_size": "interface element length at level 1, in b, or a length with its "
@@ -60,6 +63,36 @@ _SETTINGS_HELP = {
                        "stress the chosen coating model may have",
     "body_fields": "write the indenter's and base's nodal fields (CSV, VTU; the coatings' "
                    "and the interfaces' are written always)",
+    # the strategy's knobs (Settings' comments say more; summary.json's "strategy")
+    "theta_per_length": "the default theta per b of interface element (1/E)",
+    "robin_one_level": "the active-set loop's default gamma on one level (E/b)",
+    "robin_two_level_per_length": "with two levels, the default gamma times element_size (E)",
+    "auto_direct_unknowns": "auto solves directly while every new worker has at most this "
+                            "many interface unknowns, weighted by its dofs over the largest "
+                            "worker's",
+    "auto_two_level_mesh_level": "auto iterates with two levels from this mesh level up",
+    "active_set_tolerance": "relative change at which the active-set loop updates its "
+                            "contact set",
+    "estimate_margin": "factor on the stopping test's estimated error",
+    "min_secants": "pairs of iterates of the final contact set before the estimate counts",
+    "traction_floor": "tractions below this times gamma ||u|| count as zero",
+    "component_floor": "a traction component's error is measured against at least this "
+                       "share of the largest component",
+    "divergence_growth": "diverged: displacements or a relative change this many times "
+                         "their scale or smallest",
+    "stagnation_progress": "share by which a relative change must fall to count as progress",
+    "stagnation_window": "iterations without progress: the active-set loop stagnated",
+    "paper_stagnation_window": "iterations without progress: the paper's loop stagnated",
+    "paper_contraction_window": "changes over which the paper's loop reads its contraction",
+    "paper_amplification_window": "pairs of iterates whose amplification the paper's loop "
+                                  "reads",
+    "anderson_depth": "pairs of iterates Anderson acceleration keeps",
+    "anderson_filter": "Anderson's QR filter: secants below this share of their norm are "
+                       "dropped",
+    "anderson_first_relaxation": "Anderson's first step after a restart: x + this (G(x) - x)",
+    "coarse_element_factor": "two levels on mesh level 1: the coarse interface elements "
+                             "this many times longer",
+    "coarse_newton_steps": "Newton steps of the coarse contact problem at most",
 }
 _CHOICES = {"model": MODEL_CHOICES, "method": METHODS, "inner_solve": INNER_SOLVES,
             "workers": WORKERS}
@@ -85,8 +118,12 @@ def _add_scene_options(parser):
 
 
 def _add_settings_options(parser):
-    group = parser.add_argument_group("settings", "how the scene is solved")
+    settings = parser.add_argument_group("settings", "how the scene is solved")
+    knobs = parser.add_argument_group(
+        "the strategy's knobs", "the defaults of theta and gamma, auto's choices and the "
+        "Robin loops' numbers (summary.json's strategy records them resolved)")
     for f in fields(Settings):
+        group = knobs if f.name in KNOB_RANGES else settings
         text = f"{_SETTINGS_HELP[f.name]} (default {f.default})"
         if isinstance(f.default, bool):               # --body-fields / --no-body-fields
             group.add_argument(_option(f.name), dest=f.name, default=None, help=text,

@@ -13,10 +13,16 @@ import math
 
 import numpy as np
 
+from orchestrate.model.scene import Settings
+
 
 class Anderson:
-    def __init__(self, scale, memory=100, filter_tolerance=1e-10, first_relaxation=1.0,
-                 parts=()):
+    """``memory``, ``filter_tolerance``, ``first_relaxation``: by default the settings'
+    anderson_depth, anderson_filter and anderson_first_relaxation."""
+
+    def __init__(self, scale, memory=Settings.anderson_depth,
+                 filter_tolerance=Settings.anderson_filter,
+                 first_relaxation=Settings.anderson_first_relaxation, parts=()):
         self.scale = scale                  # weights making the residual norm meaningful
         self.memory = memory
         self.filter_tolerance = filter_tolerance

@@ -24,18 +24,28 @@ set to 1e-7, as many fine solves as iterations): 77 -> 37 at mesh level 2, 85 ->
 level 3.
 """
 
+from dataclasses import replace
+
 import numpy as np
 
 from orchestrate.ddm.robin import first_contact_set, robin_laws, updated_contact_set
 
-# The coarse contact problem's Newton steps at most (it takes 7-11 on the example scenes).
-COARSE_NEWTON_STEPS = 50
-
 
 def coarse_element_size(settings):
     """The coarse level's element length at mesh level 1: the fine one's at mesh level 1,
-    twice it when the fine run is at mesh level 1 itself."""
-    return settings.element_size * (2.0 if settings.mesh_level == 1 else 1.0)
+    coarse_element_factor times it when the fine run is at mesh level 1 itself."""
+    return settings.element_size * (settings.coarse_element_factor if settings.mesh_level == 1
+                                    else 1.0)
+
+
+def coarse_settings(settings):
+    """The coarse level's settings: the scene at mesh level 1 (coarse_element_size) with
+    the fine run's penalty and Robin parameter, probed and solved directly by persistent
+    workers of its own, whatever the fine run's workers (a fresh process per solve keeps
+    no factorisation to probe)."""
+    return replace(settings, mesh_level=1, theta=settings.theta,
+                   robin=settings.robin_parameter, inner_solve="direct",
+                   workers="persistent", element_size=coarse_element_size(settings))
 
 
 def coarse_laws(coarse, layout, psi):
@@ -52,9 +62,13 @@ def paired(fine, coarse):
 
 
 class CoarseCorrection:
-    def __init__(self, layout, coarse, coarse_layout, system):
+    """``newton_steps``: the coarse contact problem's semi-smooth Newton steps at most
+    (LoopKnobs.coarse_newton_steps)."""
+
+    def __init__(self, layout, coarse, coarse_layout, system, newton_steps):
         self.layout, self.coarse, self.coarse_layout, self.system = (layout, coarse,
                                                                      coarse_layout, system)
+        self.newton_steps = newton_steps
         self.prolong = _interpolation(coarse_layout, layout)     # P: coarse -> fine
         self.restrict = _interpolation(layout, coarse_layout)    # R: fine -> coarse
         self._groups = [_rows_of(coarse, coarse_layout, group) for group in coarse.sweep]
@@ -67,7 +81,7 @@ class CoarseCorrection:
         """The fine state interpolated from the coarse contact problem's solution."""
         layout = self.coarse_layout
         psi, x = first_contact_set(self.coarse.scene, layout, layout.zeros(), True), None
-        for _ in range(COARSE_NEWTON_STEPS):
+        for _ in range(self.newton_steps):
             x, _ = self.system.fixed_point(self.laws(psi))
             new_psi = updated_contact_set(layout, psi, x)
             if np.array_equal(new_psi, psi):

@@ -6,7 +6,8 @@ sigma_n(u) + alpha u = alpha g on its interfaces), and forms the new state from 
 traces and tractions. The paper's loop solves all subdomains at once (Jacobi); the
 active-set loop solves the bodies at once, then the coating patches from the bodies'
 new traces (a Gauss-Seidel sweep, Problem.sweep). Two loops are offered
-(Settings.method):
+(Settings.method); which one, and every number it reads, is the run's Strategy
+(orchestrate/ddm/strategy.py), decided before it starts:
 
 ``paper``: the paper's loop. Robin coefficient gamma = 1/theta, contact set Psi12 from
     the current iterate at every iteration (20), fixed relaxation (24):
@@ -46,6 +47,7 @@ from orchestrate.ddm.contact import penetration, updated_active_set
 from orchestrate.faults import checkpoint
 from orchestrate.ddm.interface_system import InterfaceSystem
 from orchestrate.ddm.state import StateLayout
+from orchestrate.model.scene import Settings
 
 
 @dataclass
@@ -152,34 +154,6 @@ def updated_contact_set(layout, psi, x):
     return updated_active_set(psi, state_penetration(layout, x), contact_traction(layout, x))
 
 
-# Inner tolerance of the active-set loop while Psi may still change: enough for the
-# tractions to tell tension from compression at most points. Measured on the figure
-# scenes (total iterations of 8 runs): 1e-4: 760, 3e-3: 512, 1e-2: 449, 3e-2: 428 with one
-# run cycling (caught, finished at eps_u: 94). The final answer does not depend on it.
-ACTIVE_SET_TOLERANCE = 1e-2
-
-# The stopping test's amplification needs a few pairs of iterates of the final set.
-MIN_SECANTS = 3
-
-# The amplification a history shows bounds the true one from below: measured against
-# runs to 1e-8 ... 1e-10, the errors of the bond shear were up to 2.3 times the estimate
-# (gamma = 0.01, mesh level 2, element size 0.02 b) and 3.1 times on a 2D coating of
-# E2 = 1e-6 E; those of the pressures were well below it. The stopping test multiplies
-# the estimate by this margin.
-ESTIMATE_MARGIN = 5.0
-
-# Tractions below TRACTION_FLOOR times gamma ||u|| (the Robin coefficient times the
-# displacements: the tractions' natural scale) count as zero in relative changes; real
-# contact and bond tractions are 1e-2 to 1 of it.
-TRACTION_FLOOR = 1e-6
-
-# A traction component (a bond's shear, say) is measured against at least this fraction
-# of the largest component: below, its own relative error is of no use to a reader and
-# out of reach of round-off (a run to eps_u = 1e-10 stagnated on a shear 1e-5 of the
-# pressure).
-COMPONENT_FLOOR = 1e-3
-
-
 @dataclass
 class LoopResult:
     state: np.ndarray           # traces and tractions of the last solve
@@ -199,16 +173,20 @@ class ConvergenceMonitor:
     Diverged: a non-finite value; displacements (the entries ``displacement_mask`` picks;
     tractions scale with the moduli and follow the displacements) beyond ``growth_limit``
     times the scene's scale (stamp displacement plus largest gap); or a relative change
-    ``growth_limit`` times above the smallest seen since the last ``restart``. Stagnated: no new smallest
-    relative change (by 10 %) in ``window`` iterations."""
+    ``growth_limit`` times above the smallest seen since the last ``restart``. Stagnated:
+    no new smallest relative change (smaller by the share ``progress``) in ``window``
+    iterations. ``growth_limit`` and ``progress`` are by default the settings'
+    divergence_growth and stagnation_progress."""
 
-    def __init__(self, max_iterations, displacement_scale, window, growth_limit=1e3,
-                 displacement_mask=None):
+    def __init__(self, max_iterations, displacement_scale, window,
+                 growth_limit=Settings.divergence_growth, displacement_mask=None,
+                 progress=Settings.stagnation_progress):
         self.max_iterations = max_iterations
         self.displacement_mask = displacement_mask
         self.displacement_scale = displacement_scale
         self.window = window
         self.growth_limit = growth_limit
+        self.progress = progress
         self.restart(0)
 
     def restart(self, iteration):
@@ -228,7 +206,7 @@ class ConvergenceMonitor:
             return "diverged", (f"relative change grew from {self.best_change:.3g} "
                                 f"(iteration {self.best_iteration}) to {change:.3g} "
                                 f"(iteration {iteration})")
-        if change < 0.9 * self.best_change:
+        if change < (1.0 - self.progress) * self.best_change:
             self.best_change, self.best_iteration = change, iteration
         elif iteration - self.best_iteration >= self.window:
             return "stagnated", (f"relative change stuck near {self.best_change:.3g} for "
@@ -239,10 +217,11 @@ class ConvergenceMonitor:
         return None
 
 
-def run_robin_loop(solve, problem, settings, progress=None, start=None, robin_maps=None,
+def run_robin_loop(solve, problem, strategy, progress=None, start=None, robin_maps=None,
                    coarse=None):
     """Iterate until converged or stopped; the workers keep the fields of the last solve.
 
+    ``strategy``: the loop, its laws' parameters and knobs (orchestrate/ddm/strategy.py).
     ``solve(data, names)`` performs the solves of the subdomains ``names`` at once and
     returns the traces of their sides, each worker's CPU seconds and the stamp's descent
     (orchestrate/workers/subdomains.py).
@@ -252,9 +231,9 @@ def run_robin_loop(solve, problem, settings, progress=None, start=None, robin_ma
     None (Subdomains.robin_maps); with them the active-set loop solves each contact
     set's fixed point directly (orchestrate/ddm/interface_system.py). ``coarse``: a
     CoarseCorrection (orchestrate/ddm/coarse.py) for the iterated active-set loop."""
-    if settings.method == "paper":
-        return _PaperLoop(solve, problem, settings, progress).run()
-    loop = _ActiveSetLoop(solve, problem, settings, progress)
+    if strategy.loop == "paper":
+        return _PaperLoop(solve, problem, strategy, progress).run()
+    loop = _ActiveSetLoop(solve, problem, strategy, progress)
     loop.start_state = start
     loop.robin_maps = robin_maps
     loop.coarse = coarse
@@ -273,20 +252,20 @@ def displacement_scale(problem):
 
 
 class _Loop:
-    """What both loops share: one Robin iteration, its history row, the monitor."""
+    """What both loops share: one Robin iteration, its history row, the monitor. What
+    the loop is (its sweep, its laws, its numbers) is the strategy's."""
 
-    window = 500
-    hold_inactive = False
-    multiplicative = False    # all subdomains at once (Jacobi), or Problem.sweep's groups
-
-    def __init__(self, solve, problem, settings, progress):
-        self.solve, self.problem, self.settings, self.progress = solve, problem, settings, progress
-        self.sweep = problem.sweep if self.multiplicative else (tuple(problem.subdomains),)
+    def __init__(self, solve, problem, strategy, progress):
+        self.solve, self.problem, self.strategy, self.progress = solve, problem, strategy, progress
+        self.knobs = strategy.knobs
+        self.sweep = strategy.sweep
         self.layout = StateLayout(problem.interfaces)
-        self.gamma = problem.robin
-        self.monitor = ConvergenceMonitor(settings.max_iterations, displacement_scale(problem),
-                                          self.window,
-                                          displacement_mask=self.layout.displacement_mask)
+        self.theta, self.gamma = strategy.theta.solver_value, strategy.gamma.solver_value
+        self.monitor = ConvergenceMonitor(self.knobs.max_iterations, displacement_scale(problem),
+                                          strategy.stagnation_window,
+                                          self.knobs.divergence_growth,
+                                          self.layout.displacement_mask,
+                                          self.knobs.stagnation_progress)
         self.history = []
         self.start = time.perf_counter()
         self.descent = None
@@ -294,8 +273,8 @@ class _Loop:
         self.direct = False       # whether this iteration solved its contact set directly
 
     def laws(self, psi):
-        return robin_laws(self.problem, self.layout, psi, self.problem.penalty, self.gamma,
-                          self.hold_inactive)
+        return robin_laws(self.problem, self.layout, psi, self.theta, self.gamma,
+                          self.strategy.hold_inactive)
 
     def iterate(self, x, psi):
         """Solve every subdomain for the state x and the contact set psi; return x~. The
@@ -348,7 +327,7 @@ class _Loop:
         whole, and the largest over their components (a bond's shear is read apart from
         its peel stress, and is often much smaller: its relative change jumps with every
         new contact set, so the monitor watches the first two only). Tractions are
-        measured against at least TRACTION_FLOOR gamma ||u||: without contact they are
+        measured against at least traction_floor gamma ||u||: without contact they are
         zero up to round-off, and their relative change would be noise."""
         norms, changes = self.layout.part_norms(new), self.layout.part_norms(new - old)
         sizes = self.part_sizes(norms)
@@ -358,16 +337,16 @@ class _Loop:
         return float(parts[0]), float(whole), float(np.max(parts[1:], initial=0.0))
 
     def traction_floor(self, u):
-        """TRACTION_FLOOR gamma ||u||, the least a traction is measured against."""
-        return max(TRACTION_FLOOR * self.gamma * u, 1e-300)
+        """traction_floor gamma ||u||, the least a traction is measured against."""
+        return max(self.knobs.traction_floor * self.gamma * u, 1e-300)
 
     def part_sizes(self, norms):
         """What the relative errors of the parts (StateLayout.parts) with these norms are
         measured against: a traction component's at least traction_floor and
-        COMPONENT_FLOOR times the largest component."""
+        component_floor times the largest component."""
         sizes = norms.copy()
         floor = max(self.traction_floor(norms[0]),
-                    COMPONENT_FLOOR * np.max(norms[1:], initial=0.0))
+                    self.knobs.component_floor * np.max(norms[1:], initial=0.0))
         sizes[1:] = np.maximum(sizes[1:], floor)
         sizes[0] = max(sizes[0], 1e-300)
         return sizes
@@ -380,10 +359,10 @@ class _Loop:
         sizes[1:] /= self.gamma                       # the acceleration's scaling
         residual = float(np.linalg.norm((image - x) * scale))
         hidden = np.maximum(anderson.amplification(), 1.0) * residual
-        return ESTIMATE_MARGIN * float(np.max(hidden / sizes))
+        return self.knobs.estimate_margin * float(np.max(hidden / sizes))
 
     def converged(self, error):
-        eps = self.settings.eps_u
+        eps = self.knobs.eps_u
         return error < eps, (f"estimated error {error:.3g} < eps_u = {eps:g} in the "
                              "interface displacements and tractions")
 
@@ -398,32 +377,30 @@ class _PaperLoop(_Loop):
     A fixed-point iteration that contracts by q per step is still ||x_k - x_{k-1}|| q /
     (1 - q) away from its limit: the paper's stopping test, the change alone, stops a
     slow loop far from its answer. The error is estimated as the active-set loop's is
-    (error_estimate), from the last AMPLIFICATION_WINDOW pairs of iterates, and from the
-    contraction q read off the last CONTRACTION_WINDOW changes; the larger counts. (The
-    contraction alone, over 10 iterations, was fooled by the jumps of a contact set that
-    changes every iteration: at theta = 1e-3 it called converged a run 42 % off in force.)"""
-
-    CONTRACTION_WINDOW = 10
-    AMPLIFICATION_WINDOW = 50
+    (error_estimate), from the last paper_amplification_window pairs of iterates, and
+    from the contraction q read off the last paper_contraction_window changes; the larger
+    counts. (The contraction alone, over as many iterations, was fooled by the jumps of a
+    contact set that changes every iteration: it called converged a run far off in
+    force.)"""
 
     def run(self):
-        layout, rho = self.layout, self.settings.rho
+        knobs, layout = self.knobs, self.layout
         scale = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
         scale = scale * np.sqrt(layout.entry_weight)
-        history = Anderson(scale, memory=self.AMPLIFICATION_WINDOW, parts=layout.parts)
+        history = Anderson(scale, memory=knobs.paper_amplification_window, parts=layout.parts)
         x, previous_psi, changes = layout.zeros(), None, []
-        for iteration in range(1, self.settings.max_iterations + 1):
+        for iteration in range(1, knobs.max_iterations + 1):
             psi = (state_penetration(self.layout, x) < 0).astype(float)
             image = self.iterate(x, psi)
             history.record(x, image)
-            x_new = rho * image + (1.0 - rho) * x
+            x_new = knobs.rho * image + (1.0 - knobs.rho) * x
             change = self.relative_change(x_new, x)
             changes.append(max(change))
             amplified = (self.error_estimate(image, x, history, scale)
-                         if history.secants >= MIN_SECANTS else math.inf)
+                         if history.secants >= knobs.min_secants else math.inf)
             x = x_new
             self.estimate = max(changes[-1], amplified,
-                                _contraction_bound(changes, self.CONTRACTION_WINDOW))
+                                _contraction_bound(changes, knobs.paper_contraction_window))
             done, reason = self.converged(self.estimate)
             if done:
                 self.record(image, psi, previous_psi, change, 0, "converged")
@@ -459,7 +436,7 @@ def first_contact_set(scene, layout, x, supported=False):
 class _ActiveSetLoop(_Loop):
     """Anderson-accelerated Robin iterations for a frozen Psi, Psi updated in between.
 
-    Psi is updated once the inner residual is below ACTIVE_SET_TOLERANCE. Should Psi
+    Psi is updated once the inner residual is below active_set_tolerance. Should Psi
     return to a set already tried, the updates were too inexact to tell the edge points
     apart: from then on they wait for the full tolerance eps_u, and only a cycle under
     that tolerance stops the loop.
@@ -475,29 +452,23 @@ class _ActiveSetLoop(_Loop):
     shear may hide a much larger part of the distance than its share of the residual
     (measured: 5.7 % off in shear at E2 = 1e-6 E under a test on the whole state). The
     loop stops when Psi is settled and, for every part, the residual's norm times its
-    factor is below eps_u times the part's norm (tractions: at least TRACTION_FLOOR
-    gamma ||u|| and COMPONENT_FLOOR times the largest component), with at least
-    MIN_SECANTS pairs seen in the final set. Psi is updated on the displacements' change,
+    factor is below eps_u times the part's norm (tractions: at least traction_floor
+    gamma ||u|| and component_floor times the largest component), with at least
+    min_secants pairs seen in the final set. Psi is updated on the displacements' change,
     and after a cycle on the tractions' too (they can lag behind the displacements under
     a stiff Robin parameter: an edge point flipped on their error at mesh level 3). The
-    estimate carries ESTIMATE_MARGIN."""
+    estimate carries estimate_margin. (The names are the strategy's knobs, LoopKnobs.)"""
 
-    window = 200
     start_state = None        # the first iterate (warm start), else zero
     robin_maps = None         # the subdomains' maps, when all have one (interface_system.py)
     coarse = None             # a CoarseCorrection (coarse.py): first iterate, preconditioner
-    hold_inactive = True      # constant matrices: each worker factorises once (measured:
-                              # +5-10 iterations, -40 % wall time on the figure scenes)
-    multiplicative = True     # the coatings solved from the bodies' fresh traces (a
-                              # Gauss-Seidel sweep; the coatings' solves are the cheap ones):
-                              # measured 110 -> 68 iterations plainly iterated, 27 -> 18
-                              # with two levels at mesh level 3
 
     def run(self):
-        layout, eps = self.layout, self.settings.eps_u
+        knobs, layout, eps = self.knobs, self.layout, self.knobs.eps_u
         scale = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
         scale = scale * np.sqrt(layout.entry_weight)
-        anderson = Anderson(scale, parts=layout.parts)
+        anderson = Anderson(scale, knobs.anderson_depth, knobs.anderson_filter,
+                            knobs.anderson_first_relaxation, layout.parts)
         if self.start_state is not None:
             x = self.start_state.copy()
         elif self.coarse is not None:
@@ -507,8 +478,8 @@ class _ActiveSetLoop(_Loop):
         system = self.interface_system(x)
         psi = first_contact_set(self.problem.scene, layout, x, supported=system is not None)
         previous_psi, update, seen = None, 0, {psi.tobytes()}
-        tolerance = max(eps, ACTIVE_SET_TOLERANCE)
-        for iteration in range(1, self.settings.max_iterations + 1):
+        tolerance = max(eps, knobs.active_set_tolerance)
+        for iteration in range(1, knobs.max_iterations + 1):
             self.direct = system is not None
             if system is not None:
                 x, refined = system.fixed_point(self.laws(psi))
@@ -520,7 +491,7 @@ class _ActiveSetLoop(_Loop):
             psi_settled = np.array_equal(new_psi, psi)
             if system is not None:
                 # image is x up to rounding; the refinement step sizes the rounding
-                self.estimate = ESTIMATE_MARGIN * max(rounding, max(change))
+                self.estimate = knobs.estimate_margin * max(rounding, max(change))
                 x_next = image
             else:
                 # Anderson on x + M (image - x), M the coarse correction's (or I): the
@@ -529,7 +500,7 @@ class _ActiveSetLoop(_Loop):
                           else image + self.coarse.correction(psi, image - x))
                 x_next = anderson.step(x, target)
                 self.estimate = (self.error_estimate(target, x, anderson, scale)
-                                 if anderson.secants >= MIN_SECANTS else math.inf)
+                                 if anderson.secants >= knobs.min_secants else math.inf)
             done, reason = self.converged(self.estimate)
             if system is not None and psi_settled and not done:
                 system = None     # too ill-conditioned to solve directly: iterate on

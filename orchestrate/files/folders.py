@@ -42,7 +42,7 @@ class RunFolder:
     def __init__(self, path, overwrite=False, option="--out"):
         if any(character in str(path) for character in "\n\r\0"):
             raise ParameterError(f"{option} {str(path)!r}: a folder's path cannot hold a line "
-                                 "break or a NUL (the workers are told it on a line)", option)
+                                 "break or a NUL", option)
         if os.path.islink(path):            # write where the link points, keep the link
             if not os.path.isdir(path):
                 raise ParameterError(f"{option} {path} is a symbolic link to no folder",
@@ -205,8 +205,8 @@ def release_lock(handle):
 
 class WorkFolder:
     """A run's private working folder under ``tempfile.gettempdir()``: ``robin-*`` for
-    its workers, ``orchestrate-api-*`` for a run of the Python API (orchestrate/run/api.py,
-    which reads the run's files back from it)."""
+    its workers, ``orchestrate-api-*`` for a run of the Python API (orchestrate/run/api.py:
+    the run's folder, until the run ends)."""
 
     PREFIX = "robin-"
     API_PREFIX = "orchestrate-api-"

@@ -1,9 +1,11 @@
 """Files written whole or not at all: each goes to a partial name beside its place and is
 renamed once written, so a file that exists is complete (a run's files, sweep tables,
 figures). A run itself writes into a private scratch folder (folders.py) that takes its
-output folder's name once complete."""
+output folder's name once complete. A CSV table or a VTU mesh may be rendered in memory
+first (csv_bytes, vtu_bytes), to be written and kept as the same bytes."""
 
 import csv
+import io
 import json
 import os
 from pathlib import Path
@@ -43,19 +45,44 @@ def write_text(path, text):
     written(path, lambda partial: Path(partial).write_text(text))
 
 
+def write_bytes(path, data):
+    written(path, lambda partial: Path(partial).write_bytes(data))
+
+
 def write_vtu(path, mesh):
     """Write a meshio mesh as VTU (binary, the arrays' own precision)."""
     written(path, lambda partial: meshio.write(partial, mesh, file_format="vtu"))
 
 
-def write_csv(path, columns):
-    """Write ``{name: values}`` as CSV, columns in the given order, full precision."""
-    names = list(columns)
-    rows = zip(*(np.asarray(columns[n]).tolist() for n in names))
+def vtu_bytes(mesh, name="a VTU file"):
+    """The VTU file of a meshio mesh (as write_vtu writes it), in memory: meshio writes
+    only to a file it opens by name, here one in memory (memfd)."""
+    try:
+        fd = os.memfd_create("vtu")
+        try:
+            meshio.write(f"/proc/self/fd/{fd}", mesh, file_format="vtu")
+            return os.pread(fd, os.lseek(fd, 0, os.SEEK_END), 0)
+        finally:
+            os.close(fd)
+    except OSError as error:            # a file size limit holds in memory too
+        raise system_failure(error, f"writing {name}") from None
 
-    def write(partial):
-        with open(partial, "w", newline="") as out:
-            writer = csv.writer(out)
-            writer.writerow(names)
-            writer.writerows(rows)
-    written(path, write)
+
+def csv_bytes(columns):
+    """``{name: values}`` as CSV, columns in the given order, full precision (Python's
+    csv module's text: a number as its repr, None empty, lines ended by CRLF)."""
+    names = list(columns)
+    values = [np.asarray(columns[n]) for n in names]
+    if all(v.dtype.kind in "fiu" for v in values):     # numbers alone: joined directly,
+        text = [list(map(repr, v.tolist())) for v in values]   # as csv would, faster
+        return "\r\n".join([",".join(names), *map(",".join, zip(*text)), ""]).encode()
+    out = io.StringIO(newline="")
+    writer = csv.writer(out)
+    writer.writerow(names)
+    writer.writerows(zip(*(v.tolist() for v in values)))
+    return out.getvalue().encode()
+
+
+def write_csv(path, columns):
+    """Write ``{name: values}`` as CSV (csv_bytes)."""
+    write_bytes(path, csv_bytes(columns))

@@ -18,7 +18,7 @@ patches counted from 1) and the allowed range. Scene and settings are written ne
 every result, so that any result can be reproduced.
 """
 
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass, fields, replace
 import math
 from typing import Optional
 
@@ -48,23 +48,58 @@ SHAPES = ("block", "roller")
 METHODS = ("active-set", "paper")
 INNER_SOLVES = ("auto", "direct", "iterate", "two-level")   # a contact set's fixed point
 WORKERS = ("persistent", "fresh")
-DEFAULT_ROBIN = 2.0    # E/b
-# With a coarse correction (two levels, orchestrate/ddm/coarse.py) the fine loop is left with
-# the interface modes the coarse mesh cannot see, wavelengths below about its element
-# (Settings.element_size), and a Robin parameter of their stiffness, E over that length,
-# damps them fastest. Measured on five paper scenes (both models, E2 = E/5 ... 5E),
-# iterations summed at mesh level 2 for gamma = 2, 8, 16, 32, 64 E/b: 283, 194, 156, 132,
-# 126; at level 3 for 32, 48, 64, 96: 151, 141, 133, 139.
-TWO_LEVEL_ROBIN_PER_LENGTH = 4.0   # E: gamma = 4 E / element_size = 64 E/b at b/16
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
 MESH_LEVEL_LIMIT = 16   # the paper's mesh refined 16 times: about 7 million unknowns
 ELEMENT_SIZE_RANGE = (1e-4, None)   # b: the interface elements at mesh level 1
-# The accelerated loop's default penalty per unit length of an interface element (E):
-# theta = 2.5e-4 b/E on the paper's mesh (elements b/16), shrinking with the elements, so
-# that the penalty's error (0.013 % of the peak contact stress there, 0.0044 % at mesh
-# level 3) stays below the mesh's (results/penalty.csv, studies/penalty.py); a
-# smaller theta costs that loop no iterations (docs/method.md, "Penalty").
-THETA_PER_LENGTH = 4e-3
+# The strategy's knobs (Settings, from theta_per_length on): each one's range, inclusive,
+# its unit and why beyond it the knob no longer does what it is for. An integer knob is
+# one whose default is an integer.
+KNOB_RANGES = {
+    "theta_per_length": (1e-4, 1.0, "1/E", "the default theta, this times the element's "
+                         "length, must stay within theta's range"),
+    "robin_one_level": (*ROBIN_RANGE, "E/b", "beyond, the Robin exchange stops converging "
+                        "(robin's own range)"),
+    "robin_two_level_per_length": (*ROBIN_RANGE, "E", "gamma = robin_two_level_per_length "
+                                   "/ element_size: beyond, the Robin exchange stops "
+                                   "converging (robin's own range)"),
+    "auto_direct_unknowns": (0, 10 ** 6, "interface unknowns", "0: auto probes no new "
+                             "worker's map; beyond, the dense interface system of the "
+                             "maps outgrows any machine"),
+    "auto_two_level_mesh_level": (1, MESH_LEVEL_LIMIT + 1, "mesh level", "1: two levels on "
+                                  "every mesh; above mesh_level's limit: never"),
+    "active_set_tolerance": (1e-12, 1.0, "relative change", "below eps_u it is eps_u; "
+                             "above 1 the iterates say nothing of the contact set"),
+    "estimate_margin": (1.0, 1e3, "factor", "below 1 the estimate drops under the error "
+                        "the iterates show; far above, runs iterate for nothing"),
+    "min_secants": (1, 1000, "pairs of iterates", "without a pair there is no "
+                    "amplification to estimate the error from"),
+    "traction_floor": (1e-12, 1e-2, "of gamma ||u||", "zero: a run without contact "
+                       "measures round-off; larger, real tractions count as zero"),
+    "component_floor": (1e-12, 1.0, "of the largest traction component", "zero: a "
+                        "vanishing component's round-off stalls the stopping test"),
+    "divergence_growth": (10.0, 1e12, "factor", "smaller, an ordinary jump of a new "
+                          "contact set reads as divergence"),
+    "stagnation_progress": (1e-3, 0.9, "share of the smallest change", "zero: round-off "
+                            "counts as progress; near 1, no loop progresses"),
+    "stagnation_window": (10, 10 ** 6, "iterations", "fewer, a loop stops while its "
+                          "contact set settles"),
+    "paper_stagnation_window": (10, 10 ** 6, "iterations", "fewer, a loop stops while "
+                                "its contact set settles"),
+    "paper_contraction_window": (1, 1000, "changes", "the contraction is read from at "
+                                 "least one pair of changes"),
+    "paper_amplification_window": (1, 1000, "pairs of iterates", "at least one pair; a "
+                                   "longer history costs more than it tells"),
+    "anderson_depth": (1, 1000, "pairs of iterates", "at least one secant; more than the "
+                       "interface has unknowns adds nothing but cost"),
+    "anderson_filter": (1e-16, 1e-2, "of a secant's norm", "below round-off it filters "
+                        "nothing; above, it drops secants that carry new directions"),
+    "anderson_first_relaxation": (1e-3, 1.0, "factor", "0 does not move; above 1 the "
+                                  "first step overshoots"),
+    "coarse_element_factor": (1.5, 16.0, "factor", "a coarse level must be coarser, and "
+                              "still see the contact"),
+    "coarse_newton_steps": (1, 1000, "steps", "at least the first solve; it settles in "
+                            "about ten"),
+}
 
 
 def _require(condition, key, message):
@@ -433,20 +468,23 @@ class Scene:
 
 @dataclass(frozen=True)
 class Settings:
-    """How the scene is solved: penalty, Robin loop, mesh."""
+    """How the scene is solved: penalty, Robin loop, mesh; then the strategy's knobs,
+    which tune the defaults, auto's choices and the loops (orchestrate/ddm/strategy.py
+    resolves them, with the scene, into the run's Strategy)."""
 
     theta: Optional[float] = None  # penalty parameter of (16), in b/E (E: Scene.modulus);
                                    # None: PAPER_THETA for the paper's loop, else
-                                   # THETA_PER_LENGTH times the interface element's length
+                                   # theta_per_length times the interface element's length
     method: str = "active-set"     # Robin loop: "active-set" (accelerated) or "paper"
     inner_solve: str = "auto"      # active-set loop, each contact set's fixed point:
                                    # "direct" from the subdomains' Robin maps, "iterate"
                                    # (Anderson), "two-level" (Anderson with a coarse
                                    # correction: the scene at mesh level 1; on level 1
-                                   # itself, with interface elements twice as long),
-                                   # "auto": direct where
-                                   # the maps cost less, else two-level, else iterate
-    robin: Optional[float] = None  # Robin parameter gamma, E/b; None: 1/theta (paper), 2
+                                   # itself, with interface elements coarse_element_factor
+                                   # times as long), "auto": two-level from mesh level
+                                   # auto_two_level_mesh_level, below it direct where the
+                                   # maps cost less (auto_direct_unknowns), else iterate
+    robin: Optional[float] = None  # Robin parameter gamma, E/b; None: robin_parameter
     rho: float = 0.5               # relaxation (24), in (0, 1]
     eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
     max_iterations: int = 3000
@@ -460,6 +498,60 @@ class Settings:
     body_fields: bool = True       # write the indenter's and base's nodal fields (CSV,
                                    # VTU); the interfaces' tables, the reactions and the
                                    # coatings' fields are written always
+
+    # ---- the strategy's knobs (ranges: KNOB_RANGES; what was measured with them:
+    # docs/method.md). The defaults of theta and gamma, where not given:
+    theta_per_length: float = 4e-3  # 1/E: the active-set loop's theta per b of interface
+                                    # element: the penalty's error stays below the mesh's
+    robin_one_level: float = 2.0    # E/b: the active-set loop's gamma on one level (best
+                                    # on the figure scenes)
+    robin_two_level_per_length: float = 4.0  # E: with two levels gamma is this over
+                                    # element_size: the stiffness of the interface modes
+                                    # the coarse mesh cannot see, which it damps fastest
+    # auto's inner solve:
+    auto_direct_unknowns: int = 250  # interface unknowns: auto solves each contact set
+                                    # directly while every new worker has at most this
+                                    # many, weighted by its dofs over the largest worker's
+                                    # (probing costs a back-substitution per unknown)
+    auto_two_level_mesh_level: int = 2  # auto iterates with two levels from this mesh
+                                    # level up (there probing maps costs more)
+    # the active-set loop:
+    active_set_tolerance: float = 1e-2  # relative change at which the contact set is
+                                    # updated (eps_u once a set recurs): enough to tell
+                                    # tension from compression at most points
+    # the stopping test (both loops):
+    estimate_margin: float = 5.0    # factor on the estimated error: the amplification the
+                                    # iterates show bounds the true one from below
+    min_secants: int = 3            # pairs of iterates of the final contact set before the
+                                    # estimate counts
+    traction_floor: float = 1e-6    # of gamma ||u||: tractions below it count as zero in
+                                    # relative changes (their natural scale: 1e-2 to 1)
+    component_floor: float = 1e-3   # of the largest traction component: the least each
+                                    # component's error is measured against
+    # the monitor (both loops):
+    divergence_growth: float = 1e3  # diverged: a displacement this many times the scene's
+                                    # scale, or a relative change this many times the
+                                    # smallest since the last contact set
+    stagnation_progress: float = 0.1   # relative: a new smallest change must be this much
+                                    # below the last one to count as progress
+    stagnation_window: int = 200    # iterations without progress: the active-set loop
+                                    # stagnated
+    paper_stagnation_window: int = 500  # the same for the paper's loop
+    # the paper's loop's error estimate:
+    paper_contraction_window: int = 10  # changes its contraction is read over (fewer are
+                                    # fooled by a contact set that changes every iteration)
+    paper_amplification_window: int = 50  # pairs of iterates whose amplification it reads
+    # Anderson acceleration (the active-set loop):
+    anderson_depth: int = 100       # pairs of iterates its secant model keeps
+    anderson_filter: float = 1e-10  # relative: a secant whose QR diagonal is below this
+                                    # times its norm adds no direction and is dropped
+    anderson_first_relaxation: float = 1.0  # factor: its first step after a restart,
+                                    # x + this (G(x) - x)
+    # two levels:
+    coarse_element_factor: float = 2.0  # on mesh level 1 the coarse level's interface
+                                    # elements are this many times the fine ones
+    coarse_newton_steps: int = 50   # semi-smooth Newton steps of the coarse contact
+                                    # problem at most (it settles in about ten)
 
     def __post_init__(self):
         _choice("workers", self.workers, WORKERS)
@@ -484,9 +576,14 @@ class Settings:
                  f"element_size = {self.element_size!r} must be at least "
                  f"{ELEMENT_SIZE_RANGE[0]:g} b (a length in b, or with its unit in a scene with "
                  "[units]): smaller, the faces need millions of elements")
+        self._check_knobs()
         if self.theta is None:          # the default, tied to the mesh (frozen: set once)
-            object.__setattr__(self, "theta", PAPER_THETA if self.method == "paper" else
-                               THETA_PER_LENGTH * self.element_size / self.mesh_level)
+            theta, rule = self.default_theta()
+            _require(THETA_RANGE[0] <= theta <= THETA_RANGE[1], "theta_per_length",
+                     f"theta_per_length = {self.theta_per_length!r} gives the default theta = "
+                     f"{rule} = {theta:g} b/E, beyond theta's range [{THETA_RANGE[0]:g}, "
+                     f"{THETA_RANGE[1]:g}]: give another one, or theta")
+            object.__setattr__(self, "theta", theta)
         _require(_finite(self.theta) and THETA_RANGE[0] <= self.theta <= THETA_RANGE[1], "theta",
                  f"theta = {self.theta!r} must lie in [{THETA_RANGE[0]:g}, {THETA_RANGE[1]:g}] "
                  "(b/E): a softer penalty is no contact law (the bodies pass through each "
@@ -502,6 +599,13 @@ class Settings:
             _require(self.robin * self.theta < 1.5, "robin",
                      f"robin = {self.robin!r} must be below 1.5/theta = {1.5 / self.theta:g}: "
                      "at gamma theta = 2 the Robin exchange no longer fixes the interface laws")
+        elif self.two_levels:
+            # the default's own range: the coarse level is given it as its robin
+            gamma, rule = self.robin_choice()
+            _require(ROBIN_RANGE[0] <= gamma <= ROBIN_RANGE[1], "robin_two_level_per_length",
+                     f"robin_two_level_per_length = {self.robin_two_level_per_length!r} gives "
+                     f"the default gamma = {rule} = {gamma:g} E/b, beyond robin's range "
+                     f"[{ROBIN_RANGE[0]:g}, {ROBIN_RANGE[1]:g}]: give a smaller one, or robin")
         _require(_finite(self.rho) and 0 < self.rho <= 1, "rho",
                  f"rho = {self.rho!r} must lie in (0, 1]")
         _require(_finite(self.eps_u) and 0 < self.eps_u <= LOOSEST_EPS_U, "eps_u",
@@ -521,28 +625,70 @@ class Settings:
         _require(isinstance(self.body_fields, bool), "body_fields",
                  f"body_fields = {self.body_fields!r} must be true or false")
 
+    def _check_knobs(self):
+        """Every knob within KNOB_RANGES (an integer where its default is one); the
+        stopping test's secant pairs within the history the loop keeps."""
+        defaults = {f.name: f.default for f in fields(self)}
+        for key, (low, high, unit, why) in KNOB_RANGES.items():
+            value = getattr(self, key)
+            if isinstance(defaults[key], int):
+                number = isinstance(value, int) and not isinstance(value, bool)
+                what = "an integer"
+            else:
+                number, what = _finite(value), "a number"
+            _require(number and low <= value <= high, key,
+                     f"{key} = {value!r} must be {what} in [{low:g}, {high:g}] ({unit}): {why}")
+        name = "paper_amplification_window" if self.method == "paper" else "anderson_depth"
+        history = getattr(self, name)
+        # named by the one of the two that was moved from its default
+        key = "min_secants" if self.min_secants != defaults["min_secants"] else name
+        _require(self.min_secants <= history, key,
+                 f"min_secants = {self.min_secants!r} must be at most {name} = {history!r}: "
+                 "the loop keeps no more pairs of iterates")
+
+    def default_theta(self):
+        """(theta where not given, b/E; the rule that gives it, in words): the paper's
+        for its loop, else theta_per_length times the interface element's length."""
+        if self.method == "paper":
+            return PAPER_THETA, "the paper's (method = 'paper')"
+        return (self.theta_per_length * self.element_size / self.mesh_level,
+                f"theta_per_length {self.theta_per_length:g} x element_size "
+                f"{self.element_size:g} b / mesh_level {self.mesh_level}")
+
     @property
     def two_levels(self):
-        """Whether a run iterates with a coarse correction (orchestrate/ddm/coarse.py; unless
-        its interfaces do not pair up with the coarse mesh's): its coarse level starts
-        with the run, and its workers probe no map (orchestrate/workers/subdomains.py)."""
+        """Whether a run iterates with a coarse correction (orchestrate/ddm/coarse.py;
+        unless its interfaces do not pair up with the coarse mesh's: the Strategy says):
+        its coarse level starts with the run, and its workers probe no map
+        (orchestrate/workers/subdomains.py)."""
         return self.method != "paper" and (
-            self.inner_solve == "two-level" or (self.inner_solve == "auto" and self.mesh_level > 1))
+            self.inner_solve == "two-level"
+            or (self.inner_solve == "auto" and self.mesh_level >= self.auto_two_level_mesh_level))
 
     @property
     def robin_parameter(self):
-        """gamma: as given, else the paper's 1/theta for its loop; for the active-set loop
-        2 E/b (measured best on the figure scenes, docs/method.md), or TWO_LEVEL_ROBIN_PER_LENGTH
-        E over the element length where a coarse correction may take the smooth modes;
-        never above 1/theta, where the exchange stays away from its singularity
-        gamma theta = 2."""
+        """gamma, E/b: as given, else the default of robin_choice."""
+        return self.robin_choice()[0]
+
+    def robin_choice(self):
+        """(gamma, E/b; the rule that gives it, in words): as given, else the paper's
+        1/theta for its loop; for the active-set loop robin_one_level (measured best on
+        the figure scenes, docs/method.md), or robin_two_level_per_length over the
+        element length where a coarse correction may take the smooth modes; never above
+        1/theta, where the exchange stays away from its singularity gamma theta = 2."""
         if self.robin is not None:
-            return self.robin
+            return self.robin, "given (robin)"
         if self.method == "paper":
-            return 1.0 / self.theta
-        gamma = (TWO_LEVEL_ROBIN_PER_LENGTH / self.element_size if self.two_levels
-                 else DEFAULT_ROBIN)
-        return min(gamma, 1.0 / self.theta)
+            return 1.0 / self.theta, "1/theta (method = 'paper')"
+        if self.two_levels:
+            gamma = self.robin_two_level_per_length / self.element_size
+            rule = (f"robin_two_level_per_length {self.robin_two_level_per_length:g} / "
+                    f"element_size {self.element_size:g} b (two levels)")
+        else:
+            gamma, rule = self.robin_one_level, "robin_one_level"
+        if gamma > 1.0 / self.theta:
+            return 1.0 / self.theta, f"1/theta, below {rule} = {gamma:g}"
+        return gamma, rule
 
 
 def check_compatible(scene, settings):

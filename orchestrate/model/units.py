@@ -10,10 +10,10 @@ file may state other units in a [units] table:
                      # theta and robin are in b and E (E: the stiffer body's modulus)
 
 Such a scene is made dimensionless once, before any work (lengths / b, moduli / E, a
-force / (E b)), and every output of the run is expressed in the file's units once, when
-the run is written (orchestrate/run/outputs.py's express_run): the CSV columns, the reactions, the VTU fields and the
-summary, each scaled by its kind (KINDS: a registry by name; a name missing from it is a
-fault, so that no output can leave unscaled). Without [units] the scene is in b and E and
+force / (E b)), and every output of the run is expressed in the file's units as it is
+written, once (orchestrate/run/outputs.py): the CSV columns, the reactions, the VTU
+fields and the summary, each scaled by its kind (KINDS: a registry by name; a name
+missing from it is a fault, so that no output can leave unscaled). Without [units] the scene is in b and E and
 nothing is scaled. The summary's "units" entry names the unit of every kind and column.
 
 Unit names are checked by pint (https://pint.readthedocs.io): ``length`` must name a unit
@@ -76,9 +76,10 @@ KINDS = {
 }
 TIMER_PREFIXES = ("cpu_", "back_")   # history.csv: seconds per subdomain (cpu_base, ...)
 # Summary entries kept as they are: the scene is written as given (in its units), the
-# settings are in b and E by definition, the rest are counts by subdomain or texts.
+# settings and the strategy are in b and E by definition (the strategy says its theta and
+# gamma in the scene's units too), the rest are counts by subdomain or texts.
 SUMMARY_AS_IS = ("scene", "settings", "status", "reason", "dofs", "units", "not_estimated",
-                 "estimated_unknowns", "model", "started_from", "inner_solve_used",
+                 "strategy", "estimated_unknowns", "model", "started_from", "inner_solve_used",
                  "provenance", "warnings", "sweep_point", "inner_solve_fallback")     # warnings: texts and ratios (validity.py)
 
 

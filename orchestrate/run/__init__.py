@@ -1,10 +1,11 @@
-"""One run: everything decided before any work (plan.py), the run itself and its files
-(solve.py), the answers a coating engineer looks for (answers.py), the warnings where a
-run leaves its model (validity.py), a start from a finished run (warm_start.py), the
-coarse level's own workers (coarse_level.py), ParaView collections (paraview.py), the
-monolithic solve of the same discrete problem (monolithic.py) and the Python API
-(api.py). ``solve_into(scene, settings, folder)`` is a run into a folder, as the command
-line's; ``solve_result`` (``orchestrate.solve``) returns a Result without one."""
+"""One run: everything decided before any work (plan.py), the run itself (solve.py), its
+files, each written once in the scene's units (outputs.py), the answers a coating
+engineer looks for (answers.py), the warnings where a run leaves its model
+(validity.py), a start from a finished run (warm_start.py), the coarse level's own
+workers (coarse_level.py), ParaView collections (paraview.py), the monolithic solve of
+the same discrete problem (monolithic.py) and the Python API (api.py).
+``solve_into(scene, settings, folder)`` is a run into a folder, as the command line's;
+``solve_result`` (``orchestrate.solve``) returns a Result without one."""
 
 from orchestrate.errors import RunFailed
 from orchestrate.run.answers import END_ZONE, near_patch_ends

@@ -19,8 +19,9 @@ other end's, nor the symmetry axis of a half model, which is no end. The contact
 peak pressure is split the same way: a peak at a patch end (the indenter pressing on
 the step of a patch's edge) is singular too.
 
-Computed in the solver's b and E, expressed in the scene's units with every output
-(orchestrate/model/units.py); compression is negative, tension positive.
+Computed in the solver's b and E from the run's data in memory, expressed in the scene's
+units with the summary (orchestrate/model/units.py); compression is negative, tension
+positive.
 """
 
 import numpy as np
@@ -94,8 +95,8 @@ def bond_answers(scene, x1, x2, sigma_n, sigma_t):
 
 def coating_answers(scene, nodes):
     """The largest von Mises stress of a 2D patch and its position, from its nodes'
-    x1, x2, sigma_eq."""
-    return _maxima(scene, [("von_mises", nodes["sigma_eq"].to_numpy(), MAGNITUDE)],
+    x1, x2, sigma_eq (columns by name)."""
+    return _maxima(scene, [("von_mises", np.asarray(nodes["sigma_eq"]), MAGNITUDE)],
                    nodes["x1"], nodes["x2"])
 
 
@@ -103,15 +104,15 @@ def fibre_stresses(fields, thickness):
     """sigma11 at the shell's top and bottom faces and the mean transverse shear from its
     forces: the strain is eps11 + xi3 chi11 through the thickness (freefem/shell.idp,
     xi3 along the face's outward normal), so sigma11 = T11/h + 12 M11 xi3 / h^3, at
-    xi3 = +-h/2: T11/h +- 6 M11/h^2; the shear's mean is T13/h."""
-    membrane = fields["T11"].to_numpy() / thickness
-    bending = 6.0 * fields["M11"].to_numpy() / thickness ** 2
-    return membrane + bending, membrane - bending, fields["T13"].to_numpy() / thickness
+    xi3 = +-h/2: T11/h +- 6 M11/h^2; the shear's mean is T13/h (columns by name)."""
+    membrane = np.asarray(fields["T11"]) / thickness
+    bending = 6.0 * np.asarray(fields["M11"]) / thickness ** 2
+    return membrane + bending, membrane - bending, np.asarray(fields["T13"]) / thickness
 
 
 def shell_answers(scene, coating, fields):
     """The extreme fibre stresses (tension and compression, top and bottom faces) and the
-    largest mean shear of a shell patch, from its fields (x1, x2, T11, T13, M11)."""
+    largest mean shear of a shell patch, from its fields (columns x1, x2, T11, T13, M11)."""
     top, bottom, shear = fibre_stresses(fields, coating.thickness)
     return _maxima(scene, [("top_tension", top, TENSION), ("top_compression", top, COMPRESSION),
                            ("bottom_tension", bottom, TENSION),

@@ -8,14 +8,14 @@
     result.save("run1")             # the files `python -m orchestrate solve --out run1` writes
     orchestrate.solve(other_scene, start_from=result)   # from a nearby answer: faster
 
-The run itself is the command line's (orchestrate/run/solve.py): same checks, same files;
-here it writes into a private temporary folder, which is read back and removed (and,
-if the process is killed meanwhile, removed by the next run: orchestrate/files/folders.py).
+The run itself is the command line's (orchestrate/run/solve.py): same checks, same files,
+written into a private temporary folder that is removed after the run (and, if the
+process is killed meanwhile, by the next run: orchestrate/files/folders.py). The Result
+is the run's data in memory as the run hands it back (outputs.py's RunFiles): its
+tables and fields as frames, its files' bytes for ``save``.
 """
 
 from dataclasses import dataclass, field, fields
-import io
-import os
 from pathlib import Path
 
 import pandas as pd
@@ -23,6 +23,7 @@ import pandas as pd
 from orchestrate.run import solve as run
 from orchestrate.errors import ParameterError
 from orchestrate.files.folders import RunFolder, WorkFolder
+from orchestrate.files.writing import write_bytes
 from orchestrate.model.scene import Scene, Settings
 from orchestrate.model.scene_file import apply_overrides, scene_and_settings, settings_of
 
@@ -54,7 +55,7 @@ class Result:
         started from this Result then names that folder."""
         with RunFolder(out_dir, overwrite) as folder:
             for name, data in self.files.items():
-                (Path(folder.scratch) / name).write_bytes(data)
+                write_bytes(Path(folder.scratch) / name, data)
             folder.commit()
         if remember:
             self.folder = Path(out_dir).resolve()
@@ -81,20 +82,6 @@ def _scene_and_settings(scene, settings, overrides):
     return scene_and_settings(scene, overrides, settings=values)
 
 
-def _read(folder):
-    files = {name: (folder / name).read_bytes() for name in sorted(os.listdir(folder))
-             if (folder / name).is_file()}
-    tables = {name: pd.read_csv(io.BytesIO(files[f"{name}.csv"])) if f"{name}.csv" in files
-              else pd.DataFrame() for name in TABLES}
-    fields = {}
-    for name in files:
-        stem = name[:-len("_fields.csv")] if name.endswith("_fields.csv") else name[:-len(".csv")]
-        if name.endswith(".csv") and stem not in TABLES and (
-                name.endswith("_fields.csv") or f"{stem}_reactions.txt" in files):
-            fields[stem] = pd.read_csv(io.BytesIO(files[name]))
-    return tables, fields, files
-
-
 def solve(scene, settings=None, progress=None, start_from=None, session=None,
           overrides=None):
     """Solve ``scene`` (a Scene, or the path of a scene file) with ``settings`` (Settings,
@@ -109,13 +96,14 @@ def solve(scene, settings=None, progress=None, start_from=None, session=None,
     orchestrate/run/solve.py's solve does: ParameterError before any work, RunFailed (with
     the summary) if the loop does not converge, SystemFailure."""
     scene, settings = _scene_and_settings(scene, settings, overrides)
+    start_name = None
+    if isinstance(start_from, Result):           # its tables, in memory
+        start_name = str(start_from.folder) if start_from.folder else "a Result in memory"
     with WorkFolder(WorkFolder.API_PREFIX) as scratch:     # removed after a killed process too
-        start_name = None
-        if isinstance(start_from, Result):       # its files, as a folder to read
-            start_name = str(start_from.folder) if start_from.folder else "a Result in memory"
-            start_from = start_from.save(Path(scratch) / "start", remember=False)
-        out = Path(scratch) / "run"
-        summary = run.solve(scene, settings, out, progress=progress, start_from=start_from,
-                            session=session, start_name=start_name)
-        tables, fields, files = _read(out)
-    return Result(summary=summary, fields=fields, files=files, **tables)
+        written = run.solve_run(scene, settings, Path(scratch) / "run", progress=progress,
+                                start_from=start_from, session=session,
+                                start_name=start_name, keep=True)
+    tables = {name: pd.DataFrame(written.tables.get(f"{name}.csv", {})) for name in TABLES}
+    return Result(summary=written.summary, files=written.contents,
+                  fields={name: pd.DataFrame(columns) for name, columns in written.fields.items()},
+                  **tables)

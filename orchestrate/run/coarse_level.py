@@ -4,11 +4,10 @@ their Robin maps while the fine run meshes and starts its own; the maps read, th
 """
 
 import contextlib
-import dataclasses
 
 import numpy as np
 
-from orchestrate.ddm.coarse import CoarseCorrection, coarse_element_size, coarse_laws, paired
+from orchestrate.ddm.coarse import CoarseCorrection, coarse_laws, coarse_settings
 from orchestrate.ddm.interface_system import InterfaceSystem
 from orchestrate.ddm.robin import robin_data
 from orchestrate.ddm.state import StateLayout
@@ -19,35 +18,31 @@ from orchestrate.workers.subdomains import Subdomains, write_inputs
 
 
 class CoarseLevel:
-    """The coarse level of a fine run's ``problem``: the scene at mesh level 1 (on level
-    1 itself, with interface elements twice as long: coarse_element_size) with the fine
-    penalty and Robin parameter. Its workers start, and are asked for their maps, at
-    once; they probe while the fine run meshes and starts its own, and ``correction``
-    collects the maps and stops them. ``paired``: whether the two levels' interfaces
-    pair up along s (else there is no correction)."""
+    """The coarse level of a fine run's ``problem``: ``coarse``, the problem the run's
+    plan made of its scene at mesh level 1 (on level 1 itself, with longer interface
+    elements: coarse.coarse_settings), with the fine penalty and Robin parameter, whose
+    interfaces pair up with the fine ones (the strategy has two levels only then);
+    without it, made here of the problem's settings. Its workers start, and are asked
+    for their maps, at once; they probe while the fine run meshes and starts its own,
+    and ``correction`` collects the maps and stops them. ``newton_steps``: the coarse
+    contact problem's at most (the strategy's coarse_newton_steps; without it, the
+    problem's settings')."""
 
-    def __init__(self, problem):
-        settings = problem.settings
-        # probed and solved directly by persistent workers of its own, whatever the fine
-        # run's workers (a fresh process per solve keeps no factorisation to probe)
-        coarse_settings = dataclasses.replace(settings, mesh_level=1, theta=settings.theta,
-                                              robin=settings.robin_parameter,
-                                              inner_solve="direct", workers="persistent",
-                                              element_size=coarse_element_size(settings))
+    def __init__(self, problem, coarse=None, newton_steps=None):
         self.fine_layout = StateLayout(problem.interfaces)
-        self.coarse = discretize(problem.scene, coarse_settings)
+        self.coarse = (coarse if coarse is not None
+                       else discretize(problem.scene, coarse_settings(problem.settings)))
         self.layout = StateLayout(self.coarse.interfaces)
-        self.paired = paired(problem.interfaces, self.coarse.interfaces)
+        self.newton_steps = (newton_steps if newton_steps is not None
+                             else problem.settings.coarse_newton_steps)
         self._resources = contextlib.ExitStack()
         self.workers = None
-        if not self.paired:
-            return
         try:
             workdir = self._resources.enter_context(WorkFolder())
             session = self._resources.enter_context(Session())
             files = write_inputs(self.coarse, workdir)
             self.workers = self._resources.enter_context(
-                Subdomains(self.coarse, files, session, workdir))
+                Subdomains(self.coarse, files, session))
             self.workers.request_maps(self._data())
         except BaseException:
             self.close()
@@ -60,17 +55,14 @@ class CoarseLevel:
                           coarse_laws(self.coarse, layout, np.zeros(layout.gap.size)))
 
     def correction(self):
-        """The CoarseCorrection from the probed maps (None unless ``paired``); the coarse
-        workers stop."""
-        if not self.paired:
-            return None
+        """The CoarseCorrection from the probed maps; the coarse workers stop."""
         try:
             maps = self.workers.robin_maps(self._data())
         finally:
             self.close()
         sides = {name: self.coarse.sides_of(name) for name in maps}
         return CoarseCorrection(self.fine_layout, self.coarse, self.layout,
-                                InterfaceSystem(self.layout, sides, maps))
+                                InterfaceSystem(self.layout, sides, maps), self.newton_steps)
 
     def close(self):
         """Stop the coarse workers (those still probing are killed) and remove their

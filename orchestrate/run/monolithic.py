@@ -13,7 +13,8 @@ import numpy as np
 from orchestrate.workers import freefem
 from orchestrate.ddm.contact import bond_traction, contact_stress
 from orchestrate.mesh.discretization import discretize
-from orchestrate.workers.subdomains import shell_numbers, write_inputs
+from orchestrate.workers.exchange import ShellNumbers
+from orchestrate.workers.subdomains import write_inputs
 
 
 def write_problem(problem, files, path):
@@ -28,8 +29,8 @@ def write_problem(problem, files, path):
             lines.append(" ".join(["body", files[name]["mesh"], *map(repr, numbers),
                                    files[name]["sides"]]))
         else:
-            lines.append(" ".join(["shell", files[name]["nodes"],
-                                   *map(repr, shell_numbers(subdomain)), files[name]["sides"]]))
+            numbers = ShellNumbers.of(subdomain).encode().split()
+            lines.append(" ".join(["shell", files[name]["nodes"], *numbers, files[name]["sides"]]))
     for i, interface in enumerate(problem.interfaces):
         ends = []
         for side in interface.sides:

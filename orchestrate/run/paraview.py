@@ -1,6 +1,7 @@
 """ParaView collections (.pvd): one file that opens several VTU files together.
 
     write_collection(path, files)           a run's run.pvd: every subdomain's VTU
+    collection_text(files)                  its text (a run renders its files first)
     write_sweep_collection(path, folders)   a sweep's: every run's VTUs, one time step
                                             per run (ParaView's time slider steps
                                             through the runs)
@@ -21,6 +22,10 @@ SWEEP_COLLECTION = "sweep.pvd"
 
 def _collection(path, datasets):
     """Write a VTK Collection of ``datasets``: dicts of DataSet attributes (file, ...)."""
+    write_text(path, _collection_text(datasets))
+
+
+def _collection_text(datasets):
     root = ElementTree.Element("VTKFile", type="Collection", version="0.1",
                                byte_order="LittleEndian")
     collection = ElementTree.SubElement(root, "Collection")
@@ -28,19 +33,22 @@ def _collection(path, datasets):
         ElementTree.SubElement(collection, "DataSet",
                                {key: str(value) for key, value in attributes.items()})
     ElementTree.indent(root)
-    text = '<?xml version="1.0"?>\n' + ElementTree.tostring(root, encoding="unicode") + "\n"
-    write_text(path, text)
+    return '<?xml version="1.0"?>\n' + ElementTree.tostring(root, encoding="unicode") + "\n"
 
 
 def write_collection(path, files):
     """A .pvd at ``path`` listing ``files`` (VTU paths, absolute or relative to the .pvd's
     folder) as the parts of one data set, named after the files: File > Open this one
     file and ParaView shows them all."""
-    folder = os.path.dirname(os.path.abspath(path))
-    _collection(path, [{"timestep": 0, "group": "", "part": part,
-                        "file": _relative(name, folder),
-                        "name": os.path.splitext(os.path.basename(name))[0]}
-                       for part, name in enumerate(files)])
+    write_text(path, collection_text(files, os.path.dirname(os.path.abspath(path))))
+
+
+def collection_text(files, folder="."):
+    """The text of write_collection's .pvd in ``folder``."""
+    return _collection_text([{"timestep": 0, "group": "", "part": part,
+                              "file": _relative(name, folder),
+                              "name": os.path.splitext(os.path.basename(name))[0]}
+                             for part, name in enumerate(files)])
 
 
 def run_files(run_folder):

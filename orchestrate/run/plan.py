@@ -1,6 +1,8 @@
 """A run decided before any work: the scene checked against the settings and made
 dimensionless, every "auto" patch's model chosen, the discrete problem, its size
-against the machine, and the warnings the scene already has (a Plan).
+against the machine, how it is solved (its Strategy: orchestrate/ddm/strategy.py, with
+the coarse level's problem where it has two levels), and the warnings the scene already
+has (a Plan).
 
 model = "auto" takes, per patch, the cheapest coating model whose estimated errors
 (orchestrate/model/estimate.py) are within the tolerance. Cost: the estimated number of
@@ -13,6 +15,8 @@ unknowns (docs/findings.md, "Speed and accuracy").
 
 from dataclasses import dataclass
 
+from orchestrate.ddm.coarse import coarse_settings
+from orchestrate.ddm.strategy import plan_strategy
 from orchestrate.mesh.discretization import discretize
 from orchestrate.mesh.problem_size import check_size, estimated_dofs
 from orchestrate.model.estimate import (contact_half_width, estimated_errors, not_estimated,
@@ -71,6 +75,8 @@ class Plan:
     model_choice: object   # the choice's report, or None
     scales: object         # Scales back to the scene's units
     warnings: tuple        # what validity.py knows of the scene before any work
+    strategy: object       # how it is solved (orchestrate/ddm/strategy.py)
+    coarse: object         # the coarse level's problem where the strategy has two levels
 
 
 def prepare(scene, settings):
@@ -81,9 +87,12 @@ def prepare(scene, settings):
     solved, model_choice = choose_models(solved, settings)
     problem = discretize(solved, settings)
     check_size(problem)
+    coarse = discretize(solved, coarse_settings(settings)) if settings.two_levels else None
+    strategy = plan_strategy(settings, problem, coarse)
     chosen = scene.with_models([c.model for c in solved.coatings])
     say = Say(scales, scene.units)
     return Plan(chosen, problem, model_choice, scales,
                 tuple(scene_warnings(chosen, scene, settings, say)
-                      + mesh_warnings(problem, say)))
+                      + mesh_warnings(problem, say)),
+                strategy, coarse if strategy.two_levels else None)
 

@@ -1,7 +1,8 @@
 """One run: validate, mesh, start the workers, iterate, write the results.
 
-Results of a run in its output folder, in the scene's units (b and E unless its file
-has a [units] table; summary.json's "units" names the unit of every column):
+Results of a run in its output folder, each file written once, in the scene's units (b
+and E unless its file has a [units] table; summary.json's "units" names the unit of
+every column; orchestrate/run/outputs.py):
     contact.csv    every contact interface's points: interface, x1, x2, s (arc length
                    along the base's face), sigma_n (normal stress, compression negative)
     interface.csv  every bond's points: interface, x1, x2, s, sigma_n, sigma_t (the
@@ -26,11 +27,9 @@ stagnates writes only history.csv and a summary.json that says why.
 
 import contextlib
 import math
-import os
 import time
 
 import numpy as np
-import pandas as pd
 
 from orchestrate.ddm.contact import contact_half_width, contact_zones
 from orchestrate.ddm.robin import run_robin_loop
@@ -38,16 +37,12 @@ from orchestrate.ddm.state import StateLayout
 from orchestrate.errors import RunFailed, WarnedBeforeWork  # noqa: F401  (callers import them here)
 from orchestrate.faults import checkpoint
 from orchestrate.files.folders import RunFolder, WorkFolder
-from orchestrate.files.writing import write_csv, write_json
 from orchestrate.mesh.labels import LABELS
 from orchestrate.model.scene import to_dict
 from orchestrate.model.units import scaled_summary
 from orchestrate.run import answers
 from orchestrate.run.coarse_level import CoarseLevel
-from orchestrate.run.paraview import RUN_COLLECTION, write_collection
-from orchestrate.run.outputs import (check_written, express_run, read_reactions,
-                                     summary_units, write_body_fields, write_history,
-                                     write_shell_fields)
+from orchestrate.run.outputs import RunFiles, history_table, shell_table
 from orchestrate.run.plan import prepare
 from orchestrate.run.validity import Say, forms_edited_warning, run_warnings
 from orchestrate.run.warm_start import start_state
@@ -59,16 +54,27 @@ from orchestrate.workers.subdomains import start_subdomains, write_inputs
 
 def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None,
           session=None, sweep_point=None, start_name=None, strict=False):
-    """Solve the scene; write results into ``out_dir``; return the summary dict.
-    ``start_from``: a finished run's folder whose interface state is the first iterate
-    (orchestrate/run/warm_start.py: a run of this layout of bodies and interfaces, checked
-    before any work; not used where a coarse level starts the run from its own solution
-    of the scene); ``start_name``: what the summary calls it (default: its path).
-    ``session``: a
-    Session (orchestrate/workers/session.py) that keeps workers from scene to scene; without
-    one, the run's workers stop with it. ``sweep_point``: the sweep and inputs a sweep's
-    run records (orchestrate/sweeps/sweep.py), or None. ``strict``: WarnedBeforeWork for the
-    warnings known before any work (validity.py).
+    """Solve the scene; write results into ``out_dir``; return the summary dict
+    (solve_run's, which says the rest)."""
+    return solve_run(scene, settings, out_dir, progress=progress, overwrite=overwrite,
+                     start_from=start_from, session=session, sweep_point=sweep_point,
+                     start_name=start_name, strict=strict).summary
+
+
+def solve_run(scene, settings, out_dir, progress=None, overwrite=False, start_from=None,
+              session=None, sweep_point=None, start_name=None, strict=False, keep=False):
+    """Solve the scene; write results into ``out_dir``; return the run's files
+    (outputs.py's RunFiles: its summary and tables in memory, and with ``keep`` every
+    file's bytes).
+    ``start_from``: a finished run (its folder, or the API's Result) whose interface state
+    is the first iterate (orchestrate/run/warm_start.py: a run of this layout of bodies
+    and interfaces, checked before any work; not used where a coarse level starts the
+    run from its own solution of the scene); ``start_name``: what the summary calls it
+    (default: its path). ``session``: a Session (orchestrate/workers/session.py) that
+    keeps workers from scene to scene; without one, the run's workers stop with it.
+    ``sweep_point``: the sweep and inputs a sweep's run records (orchestrate/sweeps/
+    sweep.py), or None. ``strict``: WarnedBeforeWork for the warnings known before any
+    work (validity.py).
 
     Before any work: ParameterError for a scene the settings cannot solve, a problem
     too large for the machine, or an output folder another run holds or is writing
@@ -80,6 +86,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     if strict and plan.warnings:
         raise WarnedBeforeWork(list(plan.warnings))
     scene, problem, model_choice, scales = plan.scene, plan.problem, plan.model_choice, plan.scales
+    strategy = plan.strategy         # how it is solved, decided once (ddm/strategy.py)
     start = (start_state(start_from, StateLayout(problem.interfaces))
              if start_from is not None else None)         # checked before any work
     forms = forms_hashes()           # what the workers started now will compile
@@ -87,11 +94,13 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
     with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
           contextlib.nullcontext(session) if session is not None else Session() as workers,
           workers.lock,                          # one scene at a time per session
-          CoarseLevel(problem) if settings.two_levels      # probes meanwhile
-          else contextlib.nullcontext() as coarse_level):
+          CoarseLevel(problem, plan.coarse, strategy.knobs.coarse_newton_steps)  # probes
+          if strategy.two_levels else contextlib.nullcontext() as coarse_level):  # meanwhile
         scratch = str(folder.scratch)
         files = write_inputs(problem, workdir)
-        with start_subdomains(problem, settings, files, workers, scratch) as subdomains:
+        with start_subdomains(problem, settings, files, workers) as subdomains:
+            if strategy.inner_solve.pending:    # auto: whether the maps pay, on the workers' sizes
+                strategy = strategy.decided(subdomains.solves_directly, subdomains.map_costs())
             setup_seconds = time.perf_counter() - started
             checkpoint("setup")
             coarse = None
@@ -101,12 +110,12 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             # a coarse level solves this very scene's contact problem: a better start than
             # a neighbour's answer (fewer contact sets: measured 1-2 against 0-9 at level 3)
             first_iterate = start if coarse is None else None
-            loop = run_robin_loop(subdomains.solve, problem, settings, progress, first_iterate,
+            loop = run_robin_loop(subdomains.solve, problem, strategy, progress, first_iterate,
                                   subdomains.robin_maps, coarse)
             inner_solve_used = _inner_solve_used(loop.history, coarse is not None)
             fallback = None
             if (not loop.converged and loop.status in FALLBACK_STATUSES
-                    and settings.inner_solve == "auto" and settings.workers == "persistent"
+                    and strategy.inner_solve.fallback == "direct"
                     and inner_solve_used != "direct"):
                 # auto chose to iterate, and the iteration stalled or diverged (extreme
                 # moduli): each contact set solved directly from the maps instead
@@ -114,7 +123,7 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
                             "reason": loop.reason, "iterations": loop.iterations}
                 subdomains.solve_directly()
                 earlier = loop.history
-                loop = run_robin_loop(subdomains.solve, problem, settings, progress,
+                loop = run_robin_loop(subdomains.solve, problem, strategy, progress,
                                       first_iterate, subdomains.robin_maps)
                 for row in loop.history:
                     row["iteration"] += len(earlier)
@@ -127,16 +136,14 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
                     loop.converged, loop.status = False, "contact_zone"
                     loop.reason = (f"the contact reaches the end of contact_zone at x1 = "
                                    f"{reached:g}: contact beyond it was assumed away; widen it")
-            if loop.converged:           # the workers hold the fields of the last solve
-                for prefix, kind, counts, fields in subdomains.write_outputs().values():
-                    check_written(prefix, kind, counts, fields)
-                    if kind == "body" and fields:
-                        write_body_fields(prefix)
+            # the workers hold the fields of the last solve
+            outputs = subdomains.outputs() if loop.converged else None
             dofs = subdomains.dofs
             kept = subdomains.kept
         summary = {
             "scene": to_dict(scene),         # as solved: "auto" patches with their model
             "settings": to_dict(settings),
+            "strategy": strategy.record(scales, scene.units),
             "model_choice": model_choice,
             "status": loop.status,
             "reason": loop.reason,
@@ -158,24 +165,24 @@ def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=N
             "sweep_point": sweep_point,
             "warnings": list(plan.warnings),
         }
-        write_history(os.path.join(scratch, "history.csv"), loop.history)
+        run_files = RunFiles(scratch, scales, keep)
+        run_files.table("history.csv", history_table(loop.history))
         if loop.converged:
-            results, contact_x1, contact_stress = _write_results(problem, loop, scratch)
+            results, contact_x1, contact_stress = _write_results(problem, loop, outputs,
+                                                                 run_files)
             summary.update(results)
             summary["warnings"] += run_warnings(problem, results, contact_x1, contact_stress,
                                                 Say(scales, scene.units))
         if forms_hashes() != forms:
             summary["warnings"].append(forms_edited_warning())
-        express_run(scratch, scales)         # every file in the scene's units
         summary = scaled_summary(summary, scales)
-        summary["units"] = summary_units(scratch, scene.units, scales)
         summary["wall_time_s"] = time.perf_counter() - started
-        write_json(os.path.join(scratch, "summary.json"), summary)
+        run_files.write_summary(summary, scene.units)
         checkpoint("committing")
         folder.commit()
     if not loop.converged:
-        raise RunFailed(summary)
-    return summary
+        raise RunFailed(run_files.summary)
+    return run_files
 
 
 # An iterated inner solve that auto chose and that ended so falls back to the direct solve
@@ -229,9 +236,11 @@ def interface_stresses(layout, state, psi):
     return stresses
 
 
-def _write_results(problem, loop, out_dir):
-    """Interface stresses and forces of the converged state; return (summary entries, the
-    contact points' x1 and normal stresses)."""
+def _write_results(problem, loop, outputs, run_files):
+    """Write the interface stresses and traces of the converged state and every
+    subdomain's fields (``outputs``: Subdomains.outputs()) into ``run_files``; return
+    (summary entries: answers, forces, peaks, the contact zones, ...; the contact points'
+    x1 and normal stresses), in b and E."""
     layout = StateLayout(problem.interfaces)
     state = loop.state
     stresses = interface_stresses(layout, state, loop.psi)
@@ -248,21 +257,19 @@ def _write_results(problem, loop, out_dir):
             bond_rows.append({**where, "sigma_n": stresses[i][1], "sigma_t": stresses[i][0]})
             trace_rows.append({**where, "a_t": u_a[0], "a_n": u_a[1], "b_t": u_b[0], "b_n": u_b[1]})
     where = ("interface", "x1", "x2", "s")
-    write_csv(os.path.join(out_dir, "contact.csv"), _stack(contact_rows, where + ("sigma_n",)))
-    write_csv(os.path.join(out_dir, "interface.csv"),
-              _stack(bond_rows, where + ("sigma_n", "sigma_t")))
-    write_csv(os.path.join(out_dir, "traces.csv"),
-              _stack(trace_rows, where + ("a_t", "a_n", "b_t", "b_n")))
+    run_files.table("contact.csv", _stack(contact_rows, where + ("sigma_n",)))
+    run_files.table("interface.csv", _stack(bond_rows, where + ("sigma_n", "sigma_t")))
+    run_files.table("traces.csv", _stack(trace_rows, where + ("a_t", "a_n", "b_t", "b_n")))
+    fields = {}                          # what the answers read of each patch
     for name, subdomain in problem.subdomains.items():
         if subdomain.kind == "shell":
-            write_shell_fields(os.path.join(out_dir, f"{name}_fields.csv"), subdomain.plan,
-                               os.path.join(out_dir, f"{name}.vtu"))
-    write_collection(os.path.join(out_dir, RUN_COLLECTION),
-                     [f"{name}.vtu" for name in problem.subdomains
-                      if os.path.exists(os.path.join(out_dir, f"{name}.vtu"))])
+            fields[name] = shell_table(outputs[name].columns, subdomain.plan)
+            run_files.shell(name, fields[name], subdomain.plan)
+        else:
+            fields[name] = outputs[name].columns
+            run_files.body(name, outputs[name])
+    run_files.collection(problem.subdomains)
 
-    indenter = read_reactions(os.path.join(out_dir, "indenter_reactions.txt"))
-    base = read_reactions(os.path.join(out_dir, "base_reactions.txt"))
     per_interface, contact_force, interface_force = {}, 0.0, 0.0
     for i, interface in enumerate(problem.interfaces):
         if interface.kind == "contact":
@@ -283,11 +290,11 @@ def _write_results(problem, loop, out_dir):
     scene = problem.scene
     zones = contact_zones(x_contact, sigma_contact)
     return ({
-        "answers": _answers(problem, contact_rows, bond_rows, out_dir),
+        "answers": _answers(problem, contact_rows, bond_rows, fields),
         "contact_force": contact_force,
         "interface_force": interface_force,
-        "stamp_reaction": -indenter[LABELS["Stamp"]][1],
-        "base_reaction": base[LABELS["Clamped"]][1],
+        "stamp_reaction": -outputs["indenter"].reactions[LABELS["Stamp"]][1],
+        "base_reaction": outputs["base"].reactions[LABELS["Clamped"]][1],
         "peak_contact_stress": float(np.min(sigma_contact)),
         "peak_interface_stress": float(np.min(np.concatenate(bonds))) if bonds else None,
         "contact_half_width": _half_width(scene, x_contact, sigma_contact, zones),
@@ -302,9 +309,10 @@ def _write_results(problem, loop, out_dir):
     }, x_contact, sigma_contact)
 
 
-def _answers(problem, contact_rows, bond_rows, out_dir):
+def _answers(problem, contact_rows, bond_rows, fields):
     """orchestrate/run/answers.py's values of the run: the contact, every bond (by its
-    interface's name) and every patch (by its subdomain's name)."""
+    interface's name) and every patch (by its subdomain's name; ``fields``: its nodes'
+    or its mid-line's columns)."""
     scene = problem.scene
     contact = _stack(contact_rows, ("x1", "x2", "sigma_n"))
     bonds = {row["interface"][0]: answers.bond_answers(scene, row["x1"], row["x2"],
@@ -316,11 +324,9 @@ def _answers(problem, contact_rows, bond_rows, out_dir):
             continue
         patch = scene.coatings[int(name[len("coating"):]) - 1]
         if subdomain.kind == "shell":
-            fields = pd.read_csv(os.path.join(out_dir, f"{name}_fields.csv"))
-            coatings[name] = answers.shell_answers(scene, patch, fields)
+            coatings[name] = answers.shell_answers(scene, patch, fields[name])
         else:
-            nodes = pd.read_csv(os.path.join(out_dir, f"{name}.csv"))
-            coatings[name] = answers.coating_answers(scene, nodes)
+            coatings[name] = answers.coating_answers(scene, fields[name])
     return {"contact": answers.contact_answers(scene, contact["x1"], contact["x2"],
                                                contact["sigma_n"]),
             "bonds": bonds, "coatings": coatings}

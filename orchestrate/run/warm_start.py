@@ -2,13 +2,14 @@
 
 The active-set loop starts from zero traces and tractions, and spends a third of its
 iterations finding the contact set. A finished run of a nearby scene (another h2 or E2,
-say) knows both closely: its traces and tractions, read back from its files
-(traces.csv, contact.csv, interface.csv, in its scene's units), are the first iterate
-of the next run, interface by interface (matched by name), at this run's points
-(interpolated along the face's arc length s where the points differ). The loop, its
-stopping test and its answer are unchanged: only the path to the fixed point is
-shorter. Measured on the paper's scene, 2D coating h2 = b/8, E2 = 5E: 113 iterations
-from zero, 74 from the run with E2 = E, 77 from the one with h2 = b/4.
+say) knows both closely: its traces and tractions (traces.csv, contact.csv,
+interface.csv, in its scene's units: from its folder, or from memory for a Result of
+the Python API) are the first iterate of the next run, interface by interface (matched
+by name), at this run's points (interpolated along the face's arc length s where the
+points differ). The loop, its stopping test and its answer are unchanged: only the path
+to the fixed point is shorter. Measured on the paper's scene, 2D coating h2 = b/8,
+E2 = 5E: 113 iterations from zero, 74 from the run with E2 = E, 77 from the one with
+h2 = b/4.
 """
 
 import json
@@ -66,23 +67,29 @@ _COLUMNS = {"traces": ("interface", "s", "a_t", "a_n", "b_t", "b_n"),
             "interface": ("interface", "s", "sigma_n", "sigma_t")}
 
 
-def start_state(folder, layout):
-    """The first iterate from the finished run in ``folder`` (state_from_tables), checked
+def start_state(start_from, layout):
+    """The first iterate from the finished run ``start_from``, its folder or a run in
+    memory (the API's Result: its summary and tables), by state_from_tables, checked
     before any work: ParameterError naming ``start_from`` if the folder is missing or not
     a run's, the run did not converge, a table is missing, unreadable or not finite, or
     the run's interfaces are not this scene's (another layout of bodies and patches)."""
-    folder = Path(folder)
+    in_memory = hasattr(start_from, "summary")
+    where = "(a Result)" if in_memory else Path(start_from)
 
     def refuse(why):
-        raise ParameterError(f"start_from {folder}: {why}", "start_from")
-    if not folder.exists():
-        refuse("no such folder")
-    if not folder.is_dir():
-        refuse("not a folder (a run's output folder is due)")
-    try:
-        summary = json.loads((folder / "summary.json").read_text())
-    except (OSError, ValueError):
-        refuse("holds no finished run (no readable summary.json)")
+        raise ParameterError(f"start_from {where}: {why}", "start_from")
+    if in_memory:
+        summary = start_from.summary
+    else:
+        folder = Path(start_from)
+        if not folder.exists():
+            refuse("no such folder")
+        if not folder.is_dir():
+            refuse("not a folder (a run's output folder is due)")
+        try:
+            summary = json.loads((folder / "summary.json").read_text())
+        except (OSError, ValueError):
+            refuse("holds no finished run (no readable summary.json)")
     if not isinstance(summary, dict) or not isinstance(summary.get("scene"), dict):
         refuse("its summary.json is not a run's")
     if not summary.get("converged"):
@@ -94,7 +101,8 @@ def start_state(folder, layout):
     tables = {}
     for name, columns in _COLUMNS.items():
         try:
-            table = pd.read_csv(folder / f"{name}.csv")
+            table = (getattr(start_from, name) if in_memory
+                     else pd.read_csv(folder / f"{name}.csv"))
         except (OSError, ValueError, pd.errors.EmptyDataError):
             refuse(f"{name}.csv is missing or unreadable")
         missing = [c for c in columns if c not in table.columns]

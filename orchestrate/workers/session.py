@@ -4,9 +4,9 @@ The scenes of a sweep often share bodies: every figure scene has the same indent
 lifted by h2) and the same base, whose matrices therefore do not change. A Session keeps
 the workers of the scene it last served; a subdomain of the next scene whose worker would
 read the same mesh (up to a shift of the whole body), material, load and sides takes
-that worker as it is, factorisation and all, and the worker writes its fields at the
-scene's place (robin.idp's CmdOutput carries the shift). Workers the next scene does not
-use are stopped when it ends.
+that worker as it is, factorisation and all, and its fields are put at the scene's place
+(Subdomains.outputs shifts the nodes it sends). Workers the next scene does not use are
+stopped when it ends.
 
 A worker that serves its second scene is asked once for its Robin-to-trace map
 (orchestrate/workers/robin_map.py), which the loop then evaluates instead of a solve.
@@ -83,7 +83,8 @@ def files_fingerprint(paths):
 
 
 class Entry:
-    """A kept worker: where its mesh lies, how many scenes it served, its map."""
+    """A kept worker: where its mesh lies, how many scenes it served, its map, the thread
+    that started it."""
 
     def __init__(self, worker, dofs, origin, forms):
         self.worker = worker
@@ -92,6 +93,9 @@ class Entry:
         self.forms = forms         # the digest of the forms when it started
         self.scenes = 0
         self.robin_map = None
+        # it dies with this thread (worker.die_with_parent: the kernel's parent-death
+        # signal follows the thread that started a process, not its process)
+        self.thread = threading.current_thread()
 
 
 class Session:
@@ -99,7 +103,8 @@ class Session:
 
     One scene at a time: solve() holds the session's lock for the whole run, so scenes
     solved with one Session from several threads are solved one after the other, each
-    with the answer it has alone (requests of two runs never interleave on a worker).
+    with the answer it has alone (requests of two runs never interleave on a worker);
+    a thread does not take the workers another thread started (they die with it).
     ``with Session() as session:`` stops its workers at the end of the block; a Session
     never closed stops them when it is garbage-collected, or when the interpreter exits."""
 
@@ -168,7 +173,8 @@ class _Workers:
         forms = forms_digest()
         entry = self.entries.get(fingerprint)
         if (entry is None or entry.worker.process.poll() is not None   # died
-                or entry.forms != forms):                                # edited forms
+                or entry.forms != forms                                  # edited forms
+                or entry.thread is not threading.current_thread()):      # would die with it
             self.drop(fingerprint)
             worker = Worker(name, script, arguments, self.folder, timeout,
                             stem=f"{name}-{next(self.names)}")

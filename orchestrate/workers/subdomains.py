@@ -1,25 +1,28 @@
 """The subdomain workers of a run and the files they read.
 
 Every body (the indenter, the base, a 2D coating patch) runs freefem/body.edp and every
-shell patch freefem/shell.edp, each on its own mesh or mid-line and sides file
-(orchestrate/workers/exchange.py). Within a Robin iteration the solves are independent: every
-request is written before any reply is read, so the workers compute at the same time.
+shell patch freefem/shell.edp, each on its own mesh or mid-line and sides file; what
+they are sent and send back are the records of orchestrate/workers/exchange.py. Within a
+Robin iteration the solves are independent: every request is written before any reply
+is read, so the workers compute at the same time.
 The workers come from a Session (orchestrate/workers/session.py), which may have kept them from
 an earlier scene; a kept worker's solves become evaluations of its Robin-to-trace map
 (orchestrate/workers/robin_map.py).
 """
 
+from dataclasses import replace
 import os
 import time
 
 from orchestrate.errors import system_failure
 from orchestrate.faults import checkpoint
-from orchestrate.workers.exchange import parse_reply, reply_count, request_arrays, write_sides
+from orchestrate.workers.exchange import (BodyOutput, Command, OutputRequest, RobinRequest,
+                                          ShellNumbers, ShellOutput, SideArrays, Sides,
+                                          TraceReply)
 from orchestrate.mesh.meshes import coating_mesh, write_body_mesh, write_medit
 from orchestrate.mesh.body_plans import BodyPlan
 from orchestrate.workers.robin_map import check, receive_map, send_map_request
 from orchestrate.workers.session import body_fingerprint, files_fingerprint
-from orchestrate.workers.worker import CMD_SOLVE
 
 
 def write_inputs(problem, workdir):
@@ -38,7 +41,8 @@ def _write_inputs(problem, workdir):
         files[name] = {"sides": os.path.join(workdir, f"{name}.sides")}
         sides = [(problem.interfaces[i], problem.interfaces[i].sides[k])
                  for i, k in problem.sides_of(name)]
-        write_sides(files[name]["sides"], sides)
+        with open(files[name]["sides"], "w") as out:
+            out.write(Sides(tuple(SideArrays.of(*pair) for pair in sides)).encode())
         plan = subdomain.plan
         if subdomain.kind == "body":
             files[name]["mesh"] = os.path.join(workdir, f"{name}.mesh")
@@ -57,22 +61,12 @@ def _write_inputs(problem, workdir):
     return files
 
 
-def shell_numbers(subdomain):
-    """A shell's numbers as its FreeFEM scripts take them: E, nu, h2, k', curvature,
-    whether it has thickness stretch, whether its start is on the symmetry axis."""
-    plan = subdomain.plan
-    return [subdomain.E, subdomain.nu, plan.thickness, plan.shear_factor, plan.curvature,
-            int(plan.thickness_stretch), int(plan.symmetric_start)]
-
-
 def worker_arguments(subdomain, files):
     """The command-line arguments of a subdomain's worker script (body.edp, shell.edp)."""
     if subdomain.kind == "body":
         return ["-mesh", files["mesh"], "-E", subdomain.E, "-nu", subdomain.nu,
                 "-sides", files["sides"]]
-    E, nu, h2, kshear, curvature, thickness_stretch, symmetric = shell_numbers(subdomain)
-    return ["-nodes", files["nodes"], "-E", E, "-nu", nu, "-h2", h2, "-kshear", kshear,
-            "-curvature", curvature, "-stretch", thickness_stretch, "-symmetric", symmetric,
+    return ["-nodes", files["nodes"], *ShellNumbers.of(subdomain).arguments(),
             "-sides", files["sides"]]
 
 
@@ -84,14 +78,11 @@ def load_arguments(problem):
     return ["-descent", scene.load.displacement]
 
 
-# Probing a map costs one back-substitution per interface unknown, in-process, about 0.4
-# of what a Robin iteration of the loop costs a worker of the same size; the loop took
-# 100-160 iterations on the example scenes with all subdomains at once (68-98 since the
-# coatings are solved after the bodies: single runs then break even, a session's kept
-# maps still pay). So the maps pay while every new worker has at
-# most this many interface unknowns, weighted by its dofs over the largest worker's
-# (Subdomains._maps_pay; `python -m studies.bench_direct` times both ways).
-MAP_UNKNOWNS = 250
+# Probing a map costs one back-substitution per interface unknown, in-process, a share of
+# what a Robin iteration of the loop costs a worker of the same size. So the maps pay
+# while every new worker has at most Settings.auto_direct_unknowns interface unknowns,
+# weighted by its dofs over the largest worker's (Subdomains._maps_pay; `python -m
+# studies.bench_direct` times both ways).
 # On a mesh fine enough for two levels (mesh level 2 and finer) "auto" and "two-level"
 # probe no map, not even a kept worker's: iterated with a coarse correction a scene takes
 # 20-30 Robin iterations, while the maps of the indenter and the base cost 10 s at mesh
@@ -113,7 +104,7 @@ class Subdomains:
     the maps pay (_maps_pay); "iterate" never. On a mesh fine enough for two levels,
     "auto" and "two-level" use no map at all, nor does a fresh process per solve."""
 
-    def __init__(self, problem, files, session, output_dir):
+    def __init__(self, problem, files, session):
         self.problem = problem
         self.session = session
         settings = problem.settings
@@ -123,10 +114,11 @@ class Subdomains:
         self.sides = {name: problem.sides_of(name) for name in problem.subdomains}
         self.components = {name: [problem.interfaces[i].components for i, _ in self.sides[name]]
                            for name in problem.subdomains}
-        self.specs, self.output_prefix, self.keys, self.origins = {}, {}, {}, {}
+        self.shapes = {name: [(problem.interfaces[i].components, problem.interfaces[i].size)
+                              for i, _ in self.sides[name]] for name in problem.subdomains}
+        self.specs, self.keys, self.origins = {}, {}, {}
         for name, subdomain in problem.subdomains.items():
             script = "body.edp" if subdomain.kind == "body" else "shell.edp"
-            self.output_prefix[name] = os.path.join(output_dir, name)
             arguments = worker_arguments(subdomain, files[name])
             if subdomain.stamp:
                 arguments += load_arguments(problem)
@@ -154,11 +146,22 @@ class Subdomains:
 
     def _maps_pay(self):
         """Whether probing the new workers' maps costs less than the Robin iterations a
-        direct solve of each contact set saves (MAP_UNKNOWNS; the workers work side by
-        side, a back-substitution costs about its worker's dofs)."""
+        direct solve of each contact set saves (Settings.auto_direct_unknowns; the
+        workers work side by side, a back-substitution costs about its worker's dofs)."""
         largest = max(self.dofs.values())
-        return all(self.unknowns[name] * self.dofs[name] <= MAP_UNKNOWNS * largest
+        limit = self.problem.settings.auto_direct_unknowns
+        return all(self.unknowns[name] * self.dofs[name] <= limit * largest
                    for name, entry in self.entries.items() if entry.scenes == 1)
+
+    def map_costs(self):
+        """What _maps_pay weighs: every new worker's interface unknowns weighted by its
+        dofs over the largest worker's, and the limit (the run's summary records it)."""
+        largest = max(self.dofs.values())
+        return {"auto_direct_unknowns": self.problem.settings.auto_direct_unknowns,
+                "weighted_unknowns": {name: self.unknowns[name] * self.dofs[name] / largest
+                                      for name, entry in self.entries.items()
+                                      if entry.scenes == 1},
+                "kept_workers": self.kept}
 
     def _start(self, names=None):
         """Take the workers of ``names`` (None: every one; a new one assembles and
@@ -199,20 +202,19 @@ class Subdomains:
             self.mapped[name] = (entry.robin_map is not None
                                  and entry.robin_map.serves(requests[name]))
             if not self.mapped[name]:
-                entry.worker.send(CMD_SOLVE, requests[name])
+                entry.worker.send(Command.SOLVE, requests[name])
         self.last_requests.update(requests)
         traces, seconds, descent = {}, {}, None
         for name in names:
             entry = self.entries[name]
             if self.mapped[name]:
-                arrays = entry.robin_map.reply(requests[name])
+                reply = entry.robin_map.reply(requests[name])
             else:
-                arrays = entry.worker.receive_arrays(reply_count(self.problem, self.sides[name]))
-            received, info = parse_reply(self.problem, self.sides[name], arrays)
-            traces.update(received)
-            seconds[name], seconds[f"back_{name}"] = float(info[0]), float(info[1])
+                reply = entry.worker.receive(TraceReply.decode, self.shapes[name])
+            traces.update(reply.by_side(self.sides[name]))
+            seconds[name], seconds[f"back_{name}"] = reply.seconds, reply.back_seconds
             if self.problem.subdomains[name].stamp:
-                descent = float(info[2])
+                descent = reply.descent
         seconds["wait"] = time.perf_counter() - start
         return traces, seconds, descent
 
@@ -234,7 +236,7 @@ class Subdomains:
             self._send_map_requests(self._requests(data))
 
     def _requests(self, data, names=None):
-        return {name: request_arrays(self.sides[name], data)
+        return {name: RobinRequest.of(self.sides[name], data)
                 for name in (self.entries if names is None else names)}
 
     @property
@@ -271,32 +273,37 @@ class Subdomains:
             self.entries[name].worker.kill()
         self._pending = {}
 
-    def write_outputs(self):
-        """Ask every worker to write its fields (CSV) and reactions next to its output
-        prefix; the indenter's and base's fields only with Settings.body_fields (a
-        coating's answers read its fields). A worker whose last solve was its map's solves
-        for real first (its fields), and its traces must agree with the map's. Returns
-        {name: (output prefix, kind, the counts the worker says it wrote, whether it wrote
-        its fields)}: orchestrate/run/outputs.py checks the files against them."""
+    def outputs(self):
+        """Every worker's fields and reactions of its last solve: {name: BodyOutput or
+        ShellOutput} (exchange.py), in b and E, a body's nodes at the scene's place (a kept
+        worker's mesh may lie elsewhere); the indenter's and base's fields only with
+        Settings.body_fields (a coating's answers need its fields). A worker whose last
+        solve was its map's solves for real first (its fields), and its traces must agree
+        with the map's."""
         real = [name for name, mapped in self.mapped.items() if mapped]
         for name in real:
-            self.entries[name].worker.send(CMD_SOLVE, self.last_requests[name])
+            self.entries[name].worker.send(Command.SOLVE, self.last_requests[name])
         for name in real:
             entry = self.entries[name]
-            reply = entry.worker.receive_arrays(reply_count(self.problem, self.sides[name]))
+            reply = entry.worker.receive(TraceReply.decode, self.shapes[name])
             check(entry.worker.name, entry.robin_map, self.last_requests[name], reply)
-        fields = {name: subdomain.coating or self.problem.settings.body_fields
-                  for name, subdomain in self.problem.subdomains.items()}
         for name, entry in self.entries.items():
-            entry.worker.send_output(self.output_prefix[name],
-                                     self.origins[name] - entry.origin, fields[name])
+            subdomain = self.problem.subdomains[name]
+            fields = subdomain.coating or self.problem.settings.body_fields
+            entry.worker.send(Command.OUTPUT, OutputRequest(fields))
         checkpoint("output")
-        written = {}
+        outputs = {}
         for name, entry in self.entries.items():
-            counts, = entry.worker.receive_arrays(1)
-            written[name] = (self.output_prefix[name], self.problem.subdomains[name].kind,
-                             counts, fields[name])
-        return written
+            if self.problem.subdomains[name].kind == "body":
+                output = entry.worker.receive(BodyOutput.decode)
+                dx, dy = self.origins[name] - entry.origin
+                output = replace(output, columns={**output.columns,
+                                                  "x1": output.columns["x1"] + dx,
+                                                  "x2": output.columns["x2"] + dy})
+            else:
+                output = entry.worker.receive(ShellOutput.decode)
+            outputs[name] = output
+        return outputs
 
     def _drop(self):
         """Stop this run's workers (a failed run leaves none to the next)."""
@@ -337,18 +344,18 @@ class FreshProcessSubdomains(Subdomains):
         seconds["wait"] = time.perf_counter() - start
         return traces, seconds, descent
 
-    def write_outputs(self):
+    def outputs(self):
         self._start()
         try:
             for name, data in self.last_data.items():
                 super().solve(data, [name])
-            return super().write_outputs()
+            return super().outputs()
         finally:
             self._drop()
 
 
-def start_subdomains(problem, settings, files, session, output_dir):
+def start_subdomains(problem, settings, files, session):
     """The workers of a run: persistent (default) or a fresh process per solve."""
     if settings.workers == "fresh":
-        return FreshProcessSubdomains(problem, files, session, output_dir)
-    return Subdomains(problem, files, session, output_dir)
+        return FreshProcessSubdomains(problem, files, session)
+    return Subdomains(problem, files, session)

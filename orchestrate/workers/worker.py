@@ -1,7 +1,8 @@
 """Persistent FreeFEM workers that answer requests through FIFOs.
 
 A worker script (freefem/body.edp, freefem/shell.edp) assembles and factorises once,
-replies "ready", then loops: read a request, solve, reply. The driver keeps both FIFOs
+replies "ready", then loops: read a request, solve, reply; requests and replies are the
+records of orchestrate/workers/exchange.py. The driver keeps both FIFOs
 open read-write for the worker's whole life, so that the worker's opens never block
 and a reply can be awaited with a timeout while checking that the worker is alive. A
 worker that dies, or says nothing for ``timeout`` seconds, raises ``WorkerError`` with
@@ -9,6 +10,7 @@ the end of its log.
 """
 
 import ctypes
+import fcntl
 import functools
 import os
 import re
@@ -17,9 +19,8 @@ import signal
 import subprocess
 import time
 
-import numpy as np
-
 from orchestrate.workers import freefem
+from orchestrate.workers.exchange import Command, Numbers, RecordError
 from orchestrate.errors import SystemFailure
 
 # Workers run side by side, one per core. FreeFEM links OpenMP, whose idle threads spin:
@@ -27,8 +28,8 @@ from orchestrate.errors import SystemFailure
 # mesh level 3: 25-30 % more time per Robin iteration). One thread each.
 THREADS = {"OMP_NUM_THREADS": "1"}
 
-CMD_STOP, CMD_SOLVE, CMD_OUTPUT, CMD_MAP = 0, 1, 2, 3   # as in freefem/exchange.idp
 _POLL_SECONDS = 0.05
+REPLY_BUFFER = 1 << 20       # bytes of a reply FIFO (_widen)
 
 # what a worker's death by a signal most likely means
 _DEATHS = {signal.SIGXFSZ: "a file size limit was reached (ulimit -f)",
@@ -40,6 +41,17 @@ _DEATHS = {signal.SIGXFSZ: "a file size limit was reached (ulimit -f)",
 # What a worker's log says when it ran out of memory: MUMPS's error -13 (its factors could
 # not be allocated), C++'s bad_alloc.
 _OUT_OF_MEMORY = re.compile(r"Mumps seq: number -13|INFOG\(1\)= +-13|bad_alloc")
+
+
+def _widen(fd):
+    """Let a FIFO hold a whole reply of fields (a body's, on the paper's mesh), so that
+    the workers write theirs side by side while the driver reads one after the other;
+    at most what the system allows an unprivileged process, else as it was."""
+    try:
+        with open("/proc/sys/fs/pipe-max-size") as limit:
+            fcntl.fcntl(fd, fcntl.F_SETPIPE_SZ, min(REPLY_BUFFER, int(limit.read())))
+    except (OSError, ValueError):
+        pass
 
 
 class WorkerError(SystemFailure):
@@ -81,6 +93,7 @@ class Worker:
             # at once, and select() sees a reply only when there is one.
             self._request_fd = os.open(self.request_path, os.O_RDWR)
             self._reply_fd = os.open(self.reply_path, os.O_RDWR | os.O_NONBLOCK)
+            _widen(self._reply_fd)
             with open(self.log_path, "w") as log:
                 self.process = subprocess.Popen(
                     command, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
@@ -98,41 +111,21 @@ class Worker:
             raise WorkerError(f"worker {self.name} did not start properly: {tokens[:5]}")
         return int(tokens[1])
 
-    def send(self, command, arrays=()):
-        """Write one request: the command, then each array count-first."""
-        parts = [str(command)]
-        for array in arrays:
-            array = np.asarray(array, dtype=float)
-            parts.append(f"{array.size}\n" + " ".join(map(repr, array.tolist())))
-        self._write(("\n".join(parts) + "\n").encode())
+    def send(self, command, record=None):
+        """Write one request: the command's number, then its record (exchange.py)."""
+        text = f"{int(command)}\n" + (record.encode() if record is not None else "")
+        self._write(text.encode())
 
-    def send_output(self, prefix, shift=(0.0, 0.0), fields=True):
-        """Ask for the output files under ``prefix``: the fields (unless not ``fields``),
-        the body's coordinates shifted by ``shift`` (the scene's place of a body whose
-        mesh the worker read at another), and a body's reactions."""
-        if "\n" in prefix:
-            raise ValueError(f"an output path cannot hold a line break: {prefix!r}")
-        self._write(f"{CMD_OUTPUT}\n{float(shift[0])!r} {float(shift[1])!r} {int(fields)}\n"
-                    f"{prefix}\n".encode())
-
-    def receive_arrays(self, count):
-        """Read a reply made of ``count`` count-first arrays."""
-        reply = self._read_reply()
-        try:            # every number at once: a map's reply holds tens of thousands
-            values = np.fromstring(reply, sep=" ")
-        except ValueError:
-            raise WorkerError(f"worker {self.name} sent a reply that is not numbers: "
-                              f"{reply[:200]!r}") from None
-        arrays, i = [], 0
-        for _ in range(count):
-            if i >= len(values):
-                raise WorkerError(f"worker {self.name} sent {len(arrays)} of {count} arrays")
-            n = int(values[i])
-            arrays.append(values[i + 1:i + 1 + n])
-            i += 1 + n
-        if i != len(values):
-            raise WorkerError(f"worker {self.name} sent {len(values) - i} unexpected values")
-        return arrays
+    def receive(self, decode, *sizes):
+        """Read one reply and return its record, ``decode(numbers, *sizes)`` (a record's
+        decode, exchange.py); WorkerError if it is not that record, whole."""
+        try:
+            numbers = Numbers.parse(self._read_reply(), "a reply")
+            record = decode(numbers, *sizes)
+            numbers.end()
+        except RecordError as error:
+            raise WorkerError(f"worker {self.name} sent {error}") from None
+        return record
 
     # -- lifetime -----------------------------------------------------------------------
     def stop(self, grace=5.0):
@@ -140,7 +133,7 @@ class Worker:
         try:
             if self.process is not None and self.process.poll() is None:
                 try:
-                    self._write(f"{CMD_STOP}\n".encode(), timeout=grace)
+                    self._write(f"{int(Command.STOP)}\n".encode(), timeout=grace)
                     self.process.wait(timeout=grace)
                 except (WorkerError, subprocess.TimeoutExpired, OSError):
                     pass

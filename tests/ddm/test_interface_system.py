@@ -14,7 +14,7 @@ import pytest
 
 from orchestrate.mesh.discretization import discretize
 from orchestrate.errors import ParameterError
-from orchestrate.workers.exchange import parse_reply, request_arrays
+from orchestrate.workers.exchange import RobinRequest
 from orchestrate.ddm.interface_system import InterfaceSystem
 from orchestrate.ddm.robin import robin_data, robin_laws, state_after_solve
 from orchestrate.workers.robin_map import RobinMap
@@ -48,8 +48,7 @@ def _loop_image(problem, layout, maps, laws, x):
     traces = {}
     for name, robin_map in maps.items():
         sides = problem.sides_of(name)
-        received, _ = parse_reply(problem, sides, robin_map.reply(request_arrays(sides, data)))
-        traces.update(received)
+        traces.update(robin_map.reply(RobinRequest.of(sides, data)).by_side(sides))
     return state_after_solve(layout, data, traces, x)
 
 

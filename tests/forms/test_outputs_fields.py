@@ -28,7 +28,8 @@ import pytest
 
 from studies import figures
 from orchestrate.mesh.discretization import discretize
-from orchestrate.run.outputs import STRESS_COMPONENTS, write_shell_fields
+from orchestrate.files.writing import write_vtu
+from orchestrate.run.outputs import STRESS_COMPONENTS, shell_mesh, shell_table
 from orchestrate.run.paraview import RUN_COLLECTION, write_collection, write_sweep_collection
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import paper_scene
@@ -235,8 +236,7 @@ def test_a_shell_vtu_has_the_fibre_stresses_of_its_faces(tmp_path):
     fields = pd.DataFrame({"xi": xi, "v": 0.0, "w": 0.0, "gamma": 0.0, "epsilon": 0.0,
                            "T11": 1e-4 * (1 + xi), "T13": 2e-5 * xi, "M11": 3e-6 * (1 - xi),
                            "T33": 0.0})
-    fields.to_csv(tmp_path / "coating1_fields.csv", index=False)
-    write_shell_fields(tmp_path / "coating1_fields.csv", spec, tmp_path / "coating1.vtu")
+    write_vtu(tmp_path / "coating1.vtu", shell_mesh(shell_table(fields, spec), spec))
     data = meshio.read(tmp_path / "coating1.vtu").point_data
     h2 = 0.125
     membrane, bending = fields.T11 / h2, 6 * fields.M11 / h2 ** 2

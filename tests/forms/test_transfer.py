@@ -13,12 +13,11 @@ import numpy as np
 import pytest
 
 from orchestrate.mesh.discretization import discretize
-from orchestrate.workers.exchange import parse_reply, reply_count, request_arrays
+from orchestrate.workers.exchange import Command, RobinRequest, TraceReply
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
 from orchestrate.workers.session import Session
 from orchestrate.workers.subdomains import Subdomains, write_inputs
-from orchestrate.workers.worker import CMD_SOLVE
 
 STIFF = 1e12      # Robin coefficient: the data dominate every elastic stiffness
 
@@ -38,7 +37,7 @@ def workers(request, tmp_path_factory):
         scene, _ = load_scene(SCENES_DIR / "roller.toml")
     problem = discretize(scene, Settings())
     with Session() as session:
-        subdomains = Subdomains(problem, write_inputs(problem, workdir), session, workdir)
+        subdomains = Subdomains(problem, write_inputs(problem, workdir), session)
         yield problem, subdomains
 
 
@@ -55,9 +54,8 @@ def _send(problem, subdomains, name, data):
         else:
             full[i, side] = (np.full(interface.size, STIFF), np.atleast_2d(given))
     worker = subdomains.entries[name].worker
-    worker.send(CMD_SOLVE, request_arrays(sides, full))
-    arrays = worker.receive_arrays(reply_count(problem, sides))
-    return parse_reply(problem, sides, arrays)[0]
+    worker.send(Command.SOLVE, RobinRequest.of(sides, full))
+    return worker.receive(TraceReply.decode, subdomains.shapes[name]).by_side(sides)
 
 
 def _close(received, expected):

@@ -7,6 +7,7 @@ over, evaluates their maps instead of solving, and must give the answer of a run
 own to rounding, its indenter's fields at the indenter's new place.
 """
 
+import dataclasses
 import gc
 import json
 import os
@@ -17,6 +18,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from orchestrate.workers.exchange import RobinRequest
 from orchestrate.workers.robin_map import RobinMap, check
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
@@ -153,13 +155,13 @@ def test_a_map_that_disagrees_with_a_solve_is_refused():
     one) fails the run rather than its answer."""
     matrix = np.array([[2.0, 0.5], [0.25, 1.0]])
     robin_map = RobinMap([np.ones(2)], [1], matrix, np.array([0.1, 0.2]), np.zeros(2), 0.0)
-    request = [np.ones(2), np.array([1.0, -1.0])]
+    request = RobinRequest((np.ones(2),), (np.array([[1.0, -1.0]]),))
     solved = robin_map.reply(request)
     check("w", robin_map, request, solved)                          # agrees
-    solved[0] = solved[0] * (1 + 1e-6)
+    solved = dataclasses.replace(solved, traces=(solved.traces[0] * (1 + 1e-6),))
     with pytest.raises(WorkerError, match="map and its solve differ"):
         check("w", robin_map, request, solved)
-    assert not robin_map.serves([np.full(2, 2.0), np.zeros(2)])     # another alpha
+    assert not robin_map.serves(RobinRequest((np.full(2, 2.0),), (np.zeros((1, 2)),)))  # another alpha
 
 
 def test_equal_patches_of_one_scene_each_have_a_worker(tmp_path):

@@ -1,0 +1,209 @@
+"""The strategy of a run: how its scene is solved, decided once before any work and
+handed to the loop, as preCICE's configuration is handed to its coupling scheme.
+
+``plan_strategy`` (called by orchestrate/run/plan.py's prepare) resolves the settings
+against the discrete problem into a frozen Strategy: the loop, the order of the
+subdomains' solves in an iteration, how the active-set loop reaches each contact set's
+fixed point (the inner solve), the penalty theta and the Robin parameter gamma, the
+coarse level, and the loop's knobs. robin.run_robin_loop reads it and decides nothing
+about itself; summary.json records it under "strategy" (Strategy.record), every default
+resolved.
+
+One decision needs the workers: where "auto" may solve directly, whether probing their
+Robin maps pays depends on their sizes, known once they started
+(orchestrate/workers/subdomains.py). The plan says so (InnerSolve.pending, and the rule
+it will be decided by) and the run records the decision (Strategy.decided).
+
+To extend it: another inner solve is another value of InnerSolve.planned, resolved in
+_inner_solve and acted on by the loop; another Robin parameter (per interface, say) is
+another Parameter beside ``gamma``, resolved here, that the loop's laws read.
+"""
+
+from dataclasses import asdict, dataclass, fields, replace
+from typing import Optional
+
+from orchestrate.ddm.coarse import coarse_element_size, paired
+
+PAPER, ACTIVE_SET = "paper", "active-set"
+DIRECT, ITERATE, TWO_LEVEL = "direct", "iterate", "two-level"
+NO_INNER_SOLVE = "none"              # the paper's loop: no frozen contact set
+DIRECT_OR_ITERATE = "direct or iterate"   # auto below two levels: decided by the workers
+
+
+@dataclass(frozen=True)
+class LoopKnobs:
+    """The numbers the loops read (robin.py, acceleration.py, coarse.py): the Settings'
+    fields of the same names, whose comments give their meanings and units."""
+
+    eps_u: float
+    max_iterations: int
+    rho: float
+    active_set_tolerance: float
+    estimate_margin: float
+    min_secants: int
+    traction_floor: float
+    component_floor: float
+    divergence_growth: float
+    stagnation_progress: float
+    stagnation_window: int
+    paper_stagnation_window: int
+    paper_contraction_window: int
+    paper_amplification_window: int
+    anderson_depth: int
+    anderson_filter: float
+    anderson_first_relaxation: float
+    coarse_newton_steps: int
+
+    @classmethod
+    def of(cls, settings):
+        return cls(**{f.name: getattr(settings, f.name) for f in fields(cls)})
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A parameter of the interface laws as resolved: in the solver's units (b and E),
+    as the loop uses it (the discrete problem's: Problem.penalty, Problem.robin; its
+    scene is in b and E, so the same number), and the rule that gave it."""
+
+    value: float
+    unit: str
+    solver_value: float
+    rule: str
+
+
+@dataclass(frozen=True)
+class InnerSolve:
+    """How the active-set loop reaches each contact set's fixed point: ``planned`` is
+    DIRECT (from the subdomains' Robin maps), ITERATE (Anderson), TWO_LEVEL (Anderson
+    with a coarse correction), DIRECT_OR_ITERATE (auto, decided once the workers
+    started: ``decided``, ``decided_on``) or NO_INNER_SOLVE (the paper's loop)."""
+
+    asked: str                      # Settings.inner_solve
+    planned: str
+    rule: str                       # why, in words, with the knobs it read
+    fallback: Optional[str]         # DIRECT where an iteration auto chose stalls or
+                                    # diverges (orchestrate/run/solve.py), else None
+    decided: Optional[str] = None   # the inner solve the run starts with
+    decided_on: Optional[dict] = None   # what the workers' decision weighed
+
+    @property
+    def pending(self):
+        return self.decided is None
+
+
+@dataclass(frozen=True)
+class CoarseMesh:
+    """The coarse level of two levels: the scene at ``mesh_level`` with interface
+    elements ``element_size`` long (b) at that level, solved directly."""
+
+    mesh_level: int
+    element_size: float
+    rule: str
+
+
+@dataclass(frozen=True)
+class Strategy:
+    """How a run is solved, decided once (plan_strategy)."""
+
+    loop: str                       # PAPER or ACTIVE_SET (Settings.method)
+    sweep: tuple                    # groups of subdomains solved one after the other in
+                                    # an iteration, each from the state the ones before
+                                    # left (Problem.sweep), or one group: all at once
+    hold_inactive: bool             # the Robin coefficient on all of a contact, so that no
+                                    # matrix depends on the contact set (robin_laws)
+    inner_solve: InnerSolve
+    theta: Parameter                # the penalty, b/E
+    gamma: Parameter                # the Robin parameter, E/b
+    coarse: Optional[CoarseMesh]    # with two levels, else None
+    knobs: LoopKnobs
+
+    @property
+    def two_levels(self):
+        return self.inner_solve.planned == TWO_LEVEL
+
+    @property
+    def stagnation_window(self):
+        """The monitor's window of the planned loop."""
+        return (self.knobs.paper_stagnation_window if self.loop == PAPER
+                else self.knobs.stagnation_window)
+
+    def decided(self, direct, weighed):
+        """The strategy with auto's pending inner solve decided by the workers:
+        ``direct``, whether every worker gives its map (Subdomains.solves_directly);
+        ``weighed``, what that was decided on."""
+        if not self.inner_solve.pending:
+            return self
+        return replace(self, inner_solve=replace(
+            self.inner_solve, decided=DIRECT if direct else ITERATE, decided_on=weighed))
+
+    def record(self, scales, units):
+        """summary.json's "strategy": in b and E, theta and gamma also in the scene's
+        units (``scales``: what b and E are in them; ``units``: their names)."""
+        length, stress = units.length, units.stress
+        in_scene = {"theta": (scales.length / scales.stress, f"{length}/{stress}"),
+                    "gamma": (scales.stress / scales.length, f"{stress}/{length}")}
+        record = asdict(self)
+        for name, (factor, unit) in in_scene.items():
+            record[name].update(scene_value=getattr(self, name).value * factor, scene_unit=unit)
+        record["gamma_theta"] = self.gamma.value * self.theta.value
+        record["sweep"] = [list(group) for group in self.sweep]
+        return record
+
+
+def plan_strategy(settings, problem, coarse=None):
+    """The Strategy of ``problem`` (a run's discrete problem, in b and E) under
+    ``settings``; ``coarse``: the coarse level's problem where two levels are asked
+    (Settings.two_levels), else None."""
+    paper = settings.method == PAPER
+    theta, default_rule = settings.default_theta()
+    inner_solve = _inner_solve(settings, problem, coarse)
+    gamma, gamma_rule = settings.robin_choice()
+    return Strategy(
+        loop=settings.method,
+        # the active-set loop solves the coatings from the bodies' fresh traces (a
+        # Gauss-Seidel sweep; theirs are the cheap solves): fewer iterations
+        sweep=(tuple(problem.subdomains),) if paper else problem.sweep,
+        # constant matrices: each worker factorises once per run (a few more
+        # iterations, much less time)
+        hold_inactive=not paper,
+        inner_solve=inner_solve,
+        theta=Parameter(settings.theta, "b/E", problem.penalty,
+                        default_rule if settings.theta == theta else "given (theta)"),
+        gamma=Parameter(gamma, "E/b", problem.robin, gamma_rule),
+        coarse=(CoarseMesh(1, coarse_element_size(settings), _coarse_rule(settings))
+                if inner_solve.planned == TWO_LEVEL else None),
+        knobs=LoopKnobs.of(settings))
+
+
+def _inner_solve(settings, problem, coarse):
+    """The InnerSolve the settings ask of the active-set loop, where the scene allows it
+    (two levels need interfaces that pair up with the coarse level's)."""
+    asked = settings.inner_solve
+    if settings.method == PAPER:
+        return InnerSolve(asked, NO_INNER_SOLVE, "the paper's loop updates its contact set "
+                          "at every iteration: no fixed point to solve", None, NO_INNER_SOLVE)
+    fallback = DIRECT if asked == "auto" and settings.workers == "persistent" else None
+    if settings.two_levels:
+        rule = ("asked" if asked == TWO_LEVEL else f"auto: mesh_level {settings.mesh_level}"
+                f" >= auto_two_level_mesh_level {settings.auto_two_level_mesh_level}")
+        if coarse is not None and paired(problem.interfaces, coarse.interfaces):
+            return InnerSolve(asked, TWO_LEVEL, rule, fallback, TWO_LEVEL)
+        return InnerSolve(asked, ITERATE, rule + ", but the coarse level's interfaces do not "
+                          "pair up with the fine ones", fallback, ITERATE)
+    if asked in (DIRECT, ITERATE):
+        return InnerSolve(asked, asked, "asked", None, asked)
+    if settings.workers == "fresh":
+        return InnerSolve(asked, ITERATE, "auto with a fresh process per solve, which keeps "
+                          "no factorisation to probe a map with", None, ITERATE)
+    return InnerSolve(asked, DIRECT_OR_ITERATE,
+                      f"auto: direct where every new worker's interface unknowns, weighted by "
+                      f"its dofs over the largest worker's, are at most auto_direct_unknowns "
+                      f"{settings.auto_direct_unknowns}, else iterate; decided once the "
+                      "workers started", fallback)
+
+
+def _coarse_rule(settings):
+    if settings.mesh_level == 1:
+        return (f"the paper's mesh with interface elements coarse_element_factor "
+                f"{settings.coarse_element_factor:g} times as long")
+    return "the paper's mesh (mesh level 1)"

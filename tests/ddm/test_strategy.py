@@ -1,0 +1,397 @@
+"""The strategy a run is solved by (orchestrate/ddm/strategy.py) and its knobs (Settings).
+
+- Every knob is a setting: its default is the constant it replaced (so every answer and
+  iteration count stays), a value out of its range is refused naming it, and it is a
+  flag, a scene file's and a sweep's key and an API setting.
+- The strategy is decided once, before any work (run/plan.py's prepare): the loop, the
+  inner solve planned, theta and gamma resolved (equal to Settings.theta and
+  Settings.robin_parameter), the coarse level; a run records it in summary.json, with
+  the inner solve auto decided once the workers started.
+- The loop reads its numbers from the strategy: changed, a knob changes what it should.
+  The fast tests drive the loop with springs standing in for the workers (each side a
+  bed of springs coupled to its neighbours, so that the fixed-point map has the spread
+  of eigenvalues that makes Anderson's depth matter); the slow ones run FreeFEM.
+"""
+
+import json
+import math
+from dataclasses import fields
+
+import numpy as np
+import pytest
+
+import orchestrate
+from orchestrate.cli import build_parser, main
+from orchestrate.ddm.robin import ConvergenceMonitor, run_robin_loop
+from orchestrate.ddm.strategy import (DIRECT, DIRECT_OR_ITERATE, ITERATE, NO_INNER_SOLVE,
+                                      TWO_LEVEL, LoopKnobs)
+from orchestrate.errors import ParameterError
+from orchestrate.model.scene import KNOB_RANGES, Settings
+from orchestrate.model.scene_file import SCENES_DIR, paper_scene, scene_and_settings
+from orchestrate.run.plan import prepare
+from orchestrate.run.solve import solve
+from orchestrate.sweeps.sweep_file import point_scene
+from tests.model.test_scene import PIN_THETA, PINNED
+
+# The values the loop, the coarse level and auto used before they were settings (module
+# constants of model/scene.py, ddm/robin.py, ddm/acceleration.py, ddm/coarse.py and
+# workers/subdomains.py): the knobs' defaults, which every pinned number was computed with.
+REPLACED_CONSTANTS = {
+    "theta_per_length": 4e-3,
+    "robin_one_level": 2.0,
+    "robin_two_level_per_length": 4.0,
+    "auto_direct_unknowns": 250,
+    "auto_two_level_mesh_level": 2,
+    "active_set_tolerance": 1e-2,
+    "estimate_margin": 5.0,
+    "min_secants": 3,
+    "traction_floor": 1e-6,
+    "component_floor": 1e-3,
+    "divergence_growth": 1e3,
+    "stagnation_progress": 0.1,
+    "stagnation_window": 200,
+    "paper_stagnation_window": 500,
+    "paper_contraction_window": 10,
+    "paper_amplification_window": 50,
+    "anderson_depth": 100,
+    "anderson_filter": 1e-10,
+    "anderson_first_relaxation": 1.0,
+    "coarse_element_factor": 2.0,
+    "coarse_newton_steps": 50,
+}
+INTEGER_KNOBS = [key for key, value in REPLACED_CONSTANTS.items() if isinstance(value, int)]
+
+
+# ---- the knobs as settings --------------------------------------------------------------
+
+def test_the_knobs_default_to_the_constants_they_replaced():
+    assert set(REPLACED_CONSTANTS) == set(KNOB_RANGES)
+    settings = Settings()
+    for key, value in REPLACED_CONSTANTS.items():
+        assert getattr(settings, key) == value and type(getattr(settings, key)) is type(value), key
+
+
+def _out_of_range(key):
+    low, high = KNOB_RANGES[key][:2]
+    values = [low - max(abs(low), 1), high * 2 + 1, "many", True, None, math.nan]
+    if key in INTEGER_KNOBS:
+        values.append(low + 0.5)
+    else:
+        values.append(math.inf)
+    return values
+
+
+@pytest.mark.parametrize("key, value", [(key, value) for key in KNOB_RANGES
+                                        for value in _out_of_range(key)])
+def test_a_knob_out_of_range_is_refused_naming_it(key, value):
+    with pytest.raises(ParameterError) as refused:
+        Settings(**{key: value})
+    assert refused.value.key == key and str(refused.value).startswith(f"{key} = ")
+
+
+# each end accepted; the secant pairs the stopping test waits for fit the history kept
+COMPANIONS = {("min_secants", 1000): {"anderson_depth": 1000},
+              ("anderson_depth", 1): {"min_secants": 1},
+              ("paper_amplification_window", 1): {"min_secants": 1}}
+
+
+@pytest.mark.parametrize("key, value", [(key, end) for key in KNOB_RANGES
+                                        for end in KNOB_RANGES[key][:2]])
+def test_a_knob_at_an_end_of_its_range_is_accepted(key, value):
+    settings = Settings(**{key: value, **COMPANIONS.get((key, value), {})})
+    assert getattr(settings, key) == value
+
+
+def test_more_secant_pairs_than_the_history_keeps_are_refused():
+    with pytest.raises(ParameterError, match="min_secants = 3 must be at most anderson_depth"):
+        Settings(anderson_depth=2)
+    with pytest.raises(ParameterError, match="at most paper_amplification_window = 4") as refused:
+        Settings(method="paper", min_secants=5, paper_amplification_window=4)
+    assert refused.value.key == "min_secants"
+    assert Settings(method="paper", anderson_depth=2, min_secants=1).anderson_depth == 2
+
+
+def test_a_default_gamma_beyond_robins_range_is_refused_naming_its_knob():
+    """With two levels the default gamma is robin_two_level_per_length over the element
+    length, and the coarse level is given it as its robin."""
+    with pytest.raises(ParameterError) as refused:
+        Settings(mesh_level=2, robin_two_level_per_length=100.0)
+    assert refused.value.key == "robin_two_level_per_length" and "1600" in str(refused.value)
+    assert Settings(mesh_level=2, robin_two_level_per_length=100.0, robin=8.0).robin == 8.0
+
+
+def test_every_knob_is_a_flag_a_scene_files_and_a_sweeps_key(tmp_path):
+    values = {key: KNOB_RANGES[key][0] for key in KNOB_RANGES}
+    values.update(min_secants=1)                     # within the history of depth 1
+    options = [f"--{key.replace('_', '-')}={value}" for key, value in values.items()]
+    arguments = build_parser().parse_args(["solve", "--out", str(tmp_path / "run"), *options])
+    scene_file = tmp_path / "scene.toml"
+    scene_file.write_text((SCENES_DIR / "paper.toml").read_text() + "\n[settings]\n"
+                          + "".join(f"{key} = {value!r}\n" for key, value in values.items()))
+    from_file = scene_and_settings(scene_file)[1]
+    from_sweep = point_scene(values)[1]
+    for key, value in values.items():
+        assert getattr(arguments, key) == value, key
+        assert getattr(from_file, key) == value == getattr(from_sweep, key), key
+
+
+def test_a_knob_out_of_range_is_refused_by_the_command_line_and_the_api(tmp_path, capsys):
+    status = main(["solve", "--out", str(tmp_path / "run"), "--estimate-margin", "0.5"])
+    assert status == 2 and "estimate_margin = 0.5 must be" in capsys.readouterr().err
+    with pytest.raises(ParameterError) as refused:
+        orchestrate.solve(paper_scene(), {"anderson_depth": 0})
+    assert refused.value.key == "anderson_depth"
+    scene_file = tmp_path / "scene.toml"
+    scene_file.write_text((SCENES_DIR / "paper.toml").read_text()
+                          + "\n[settings]\ncoarse_newton_steps = 0\n")
+    with pytest.raises(ParameterError, match=f"{scene_file}: settings.coarse_newton_steps"):
+        scene_and_settings(scene_file)
+
+
+# ---- the strategy decided once ------------------------------------------------------------
+
+@pytest.mark.parametrize("values, planned, gamma, coarse_element", [
+    ({}, DIRECT_OR_ITERATE, 2.0, None),
+    ({"inner_solve": "direct"}, DIRECT, 2.0, None),
+    ({"inner_solve": "iterate", "robin_one_level": 3.0}, ITERATE, 3.0, None),
+    ({"workers": "fresh"}, ITERATE, 2.0, None),
+    ({"mesh_level": 2}, TWO_LEVEL, 64.0, 0.0625),
+    ({"mesh_level": 2, "robin_two_level_per_length": 2.0}, TWO_LEVEL, 32.0, 0.0625),
+    ({"mesh_level": 2, "auto_two_level_mesh_level": 3}, DIRECT_OR_ITERATE, 2.0, None),
+    ({"auto_two_level_mesh_level": 1}, TWO_LEVEL, 64.0, 0.125),
+    ({"inner_solve": "two-level", "coarse_element_factor": 4.0}, TWO_LEVEL, 64.0, 0.25),
+    ({"theta_per_length": 8e-3}, DIRECT_OR_ITERATE, 2.0, None),
+    ({"robin": 5.0}, DIRECT_OR_ITERATE, 5.0, None),
+])
+def test_the_plan_resolves_the_strategy_from_the_settings(values, planned, gamma,
+                                                          coarse_element):
+    settings = Settings(**values)
+    plan = prepare(paper_scene(), settings)
+    strategy = plan.strategy
+    assert strategy.loop == "active-set" and strategy.hold_inactive
+    assert strategy.sweep == (("indenter", "base"), ("coating1",))
+    assert strategy.inner_solve.asked == settings.inner_solve
+    assert strategy.inner_solve.planned == planned
+    assert strategy.inner_solve.pending == (planned == DIRECT_OR_ITERATE)
+    assert strategy.inner_solve.fallback == (DIRECT if settings.inner_solve == "auto"
+                                             and settings.workers == "persistent" else None)
+    assert strategy.theta.value == settings.theta == plan.problem.penalty
+    assert strategy.theta.value == pytest.approx(
+        values.get("theta_per_length", 4e-3) * 0.0625 / settings.mesh_level, rel=1e-12)
+    assert strategy.gamma.value == settings.robin_parameter == plan.problem.robin
+    assert strategy.gamma.value == pytest.approx(gamma, rel=1e-12)
+    assert strategy.theta.solver_value == strategy.theta.value
+    assert strategy.gamma.solver_value == strategy.gamma.value
+    assert strategy.knobs == LoopKnobs.of(settings)
+    if coarse_element is None:
+        assert strategy.coarse is None and plan.coarse is None
+    else:
+        assert strategy.coarse.mesh_level == 1
+        assert strategy.coarse.element_size == pytest.approx(coarse_element, rel=1e-12)
+        assert plan.coarse.robin == strategy.gamma.value
+        assert plan.coarse.penalty == strategy.theta.value
+
+
+def test_the_papers_loop_has_no_inner_solve_and_solves_every_subdomain_at_once():
+    plan = prepare(paper_scene(), Settings(method="paper"))
+    strategy = plan.strategy
+    assert strategy.loop == "paper" and not strategy.hold_inactive
+    assert strategy.inner_solve.planned == NO_INNER_SOLVE and strategy.inner_solve.fallback is None
+    assert strategy.sweep == (tuple(plan.problem.subdomains),)
+    assert set(strategy.sweep[0]) == {"indenter", "base", "coating1"}
+    assert strategy.theta.value == 1e-3 and strategy.gamma.value == pytest.approx(1e3)
+    assert strategy.stagnation_window == Settings().paper_stagnation_window
+
+
+def test_the_record_says_theta_and_gamma_in_the_scenes_units_too():
+    """cylinder_mm.toml: b = 1 mm, E = 210 GPa; never a null for a default."""
+    scene, settings = scene_and_settings(SCENES_DIR / "cylinder_mm.toml")
+    plan = prepare(scene, settings)
+    record = json.loads(json.dumps(plan.strategy.record(plan.scales, scene.units)))
+    b, modulus = plan.scales.length, plan.scales.stress
+    assert record["theta"]["value"] == settings.theta and record["theta"]["unit"] == "b/E"
+    assert record["theta"]["scene_value"] == pytest.approx(settings.theta * b / modulus)
+    assert record["theta"]["scene_unit"] == "mm/MPa"
+    assert record["gamma"]["value"] == settings.robin_parameter is not None
+    assert record["gamma"]["scene_value"] == pytest.approx(settings.robin_parameter * modulus / b)
+    assert record["gamma"]["scene_unit"] == "MPa/mm"
+    assert record["gamma_theta"] == pytest.approx(settings.robin_parameter * settings.theta)
+    assert record["knobs"] == {f.name: getattr(settings, f.name) for f in fields(LoopKnobs)}
+
+
+def test_a_pending_inner_solve_is_recorded_once_decided():
+    strategy = prepare(paper_scene(), Settings()).strategy
+    weighed = {"auto_direct_unknowns": 250, "weighted_unknowns": {"base": 300.0}}
+    decided = strategy.decided(False, weighed)
+    assert not decided.inner_solve.pending and decided.inner_solve.decided == ITERATE
+    assert decided.inner_solve.decided_on == weighed and strategy.inner_solve.pending
+    assert decided.decided(True, {}) is decided          # decided once
+    assert strategy.decided(True, {}).inner_solve.decided == DIRECT
+
+
+# ---- the loop reads its knobs: springs for workers ----------------------------------------
+
+SPRING_STIFFNESS = {"indenter": 1.0, "base": 1.5, "coating1": 3.0}   # E/b per point
+SPRING_COUPLING = 30.0          # neighbouring points' springs against the ground's
+
+
+def spring_solve(problem):
+    """Workers of springs: every side a chain of points held by springs K (each to the
+    ground and to its neighbours), the indenter's pushed by the stamp's descent; its
+    Robin solve is (alpha + K) u = alpha g + K descent."""
+    descent = problem.scene.load.displacement
+
+    def solve(data, names):
+        traces = {}
+        for name in names:
+            load = descent if problem.subdomains[name].stamp else 0.0
+            for i, side in problem.sides_of(name):
+                alpha, g = data[i, side]
+                n = problem.interfaces[i].size
+                chain = 2 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)
+                K = SPRING_STIFFNESS[name] * (np.eye(n) + SPRING_COUPLING * chain)
+                traces[i, side] = np.linalg.solve(np.diag(alpha) + K,
+                                                  (alpha * g + K.sum(axis=1) * load).T).T
+        seconds = {"wait": 0.0, **{key + name: 0.0 for name in names for key in ("", "back_")}}
+        return traces, seconds, descent if "indenter" in names else None
+    return solve
+
+
+def spring_loop(solve=spring_solve, **values):
+    """The active-set loop iterated on the paper's scene with springs for workers."""
+    plan = prepare(paper_scene(), Settings(inner_solve="iterate", **values))
+    return run_robin_loop(solve(plan.problem), plan.problem, plan.strategy)
+
+
+def _final_set(loop):
+    """Iterations of the loop's last contact set."""
+    updates = [row["active_set_update"] for row in loop.history]
+    return updates.count(updates[-1])
+
+
+def test_a_smaller_anderson_depth_takes_more_iterations_to_the_same_answer():
+    deep, shallow = spring_loop(), spring_loop(anderson_depth=3)
+    assert deep.converged and shallow.converged
+    assert shallow.iterations > 1.5 * deep.iterations
+    assert shallow.history[-1]["contact_force"] == pytest.approx(
+        deep.history[-1]["contact_force"], rel=1e-5)
+
+
+def test_a_larger_estimate_margin_stops_later_with_a_smaller_error():
+    plain, careful = spring_loop(), spring_loop(estimate_margin=50.0)
+    assert plain.converged and careful.converged
+    assert careful.iterations > plain.iterations
+    # the estimate is 10 times as large for the same iterates: where the plain loop
+    # stopped, the careful one would not have
+    assert 10 * plain.error_estimate > careful.error_estimate
+
+
+def test_the_final_contact_set_waits_for_min_secants_pairs():
+    loop = spring_loop(min_secants=80)
+    assert loop.converged and _final_set(loop) >= 80 + 1 > _final_set(spring_loop())
+
+
+def test_a_tighter_active_set_tolerance_spends_more_iterations_on_each_contact_set():
+    assert spring_loop(active_set_tolerance=1e-5).iterations > spring_loop().iterations
+
+
+def test_the_loop_stops_at_its_iteration_limit():
+    loop = spring_loop(max_iterations=5)
+    assert loop.status == "max_iterations" and loop.iterations == 5
+
+
+def growing_solve(problem):
+    """Workers whose every answer doubles: the loop diverges."""
+    calls = []
+
+    def solve(data, names):
+        calls.append(names)
+        traces, seconds, descent = spring_solve(problem)(data, names)
+        return ({key: trace * 2.0 ** len(calls) for key, trace in traces.items()}, seconds,
+                descent)
+    return solve
+
+
+def test_a_smaller_divergence_growth_stops_a_diverging_loop_sooner():
+    early, late = (spring_loop(growing_solve, divergence_growth=growth) for growth in (10.0, 1e3))
+    assert early.status == late.status == "diverged"
+    assert early.iterations < late.iterations
+
+
+def test_the_monitor_counts_progress_by_stagnation_progress():
+    changes = [1.0, 0.8, 0.7, 0.65, 0.6, 0.58]
+    outcomes = {}
+    for progress in (0.1, 0.5):
+        monitor = ConvergenceMonitor(1000, 1.0, window=3, progress=progress)
+        outcomes[progress] = [monitor.check(k, np.zeros(1), change)
+                              for k, change in enumerate(changes, start=1)]
+    assert all(outcome is None for outcome in outcomes[0.1])
+    assert outcomes[0.5][3][0] == "stagnated"
+
+
+# ---- runs: the strategy recorded, the defaults' numbers, knobs that change them --------------
+
+@pytest.mark.slow
+def test_a_run_records_its_strategy_resolved(tmp_path):
+    settings = Settings()
+    summary = solve(paper_scene(), settings, tmp_path / "run")
+    strategy = summary["strategy"]
+    assert summary["settings"]["robin"] is None              # given: none
+    assert strategy["gamma"]["value"] == settings.robin_parameter == 2.0
+    assert strategy["theta"]["value"] == settings.theta == summary["settings"]["theta"]
+    assert strategy["inner_solve"]["planned"] == DIRECT_OR_ITERATE
+    assert strategy["inner_solve"]["decided"] == DIRECT == summary["inner_solve_used"]
+    weighed = strategy["inner_solve"]["decided_on"]
+    assert set(weighed["weighted_unknowns"]) == {"indenter", "base", "coating1"}
+    assert max(weighed["weighted_unknowns"].values()) <= weighed["auto_direct_unknowns"]
+    assert strategy["knobs"] == {f.name: getattr(settings, f.name) for f in fields(LoopKnobs)}
+    written = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert written["strategy"] == strategy
+
+
+@pytest.mark.slow
+def test_the_defaults_reproduce_the_pinned_default_scene(tmp_path):
+    """tests/model/test_scene.py's pins, with every knob at its default and with every
+    knob given the constant it replaced: the same numbers, the same iterations."""
+    pinned = {"theta": PIN_THETA, "inner_solve": "iterate"}
+    defaults = solve(paper_scene(), Settings(**pinned), tmp_path / "defaults")
+    given = solve(paper_scene(), Settings(**pinned, **REPLACED_CONSTANTS), tmp_path / "given")
+    for name, value in PINNED.items():
+        assert defaults[name] == pytest.approx(value, rel=1e-8), name
+        assert given[name] == pytest.approx(value, rel=1e-8), name
+    assert given["iterations"] == defaults["iterations"]
+    assert given["strategy"] == defaults["strategy"]
+
+
+@pytest.mark.slow
+def test_smaller_anderson_depth_and_larger_margin_iterate_longer_to_the_same_answer(tmp_path):
+    runs = {name: solve(paper_scene(), Settings(inner_solve="iterate", **values),
+                        tmp_path / name)
+            for name, values in {"default": {}, "shallow": {"anderson_depth": 5},
+                                 "careful": {"estimate_margin": 50.0}}.items()}
+    for name in ("shallow", "careful"):
+        assert runs[name]["iterations"] > runs["default"]["iterations"], name
+        assert runs[name]["peak_contact_stress"] == pytest.approx(
+            runs["default"]["peak_contact_stress"], rel=1e-5), name
+    assert runs["shallow"]["strategy"]["knobs"]["anderson_depth"] == 5
+
+
+@pytest.mark.slow
+def test_auto_decides_to_iterate_where_no_map_pays(tmp_path):
+    summary = solve(paper_scene(), Settings(auto_direct_unknowns=0), tmp_path / "run")
+    inner_solve = summary["strategy"]["inner_solve"]
+    assert inner_solve["decided"] == ITERATE == summary["inner_solve_used"]
+    assert inner_solve["decided_on"]["auto_direct_unknowns"] == 0
+
+
+@pytest.mark.slow
+def test_a_coarser_coarse_level_gives_the_same_answer(tmp_path):
+    """Two levels on the paper's mesh, the coarse interface elements four times as long
+    instead of twice."""
+    twice = solve(paper_scene(), Settings(inner_solve="two-level"), tmp_path / "twice")
+    four = solve(paper_scene(), Settings(inner_solve="two-level", coarse_element_factor=4.0),
+                 tmp_path / "four")
+    assert four["inner_solve_used"] == twice["inner_solve_used"] == TWO_LEVEL
+    assert four["strategy"]["coarse"]["element_size"] == 0.25
+    assert twice["strategy"]["coarse"]["element_size"] == 0.125
+    assert four["peak_contact_stress"] == pytest.approx(twice["peak_contact_stress"], rel=1e-5)
