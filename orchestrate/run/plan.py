@@ -34,13 +34,14 @@ def estimated_unknowns(scene, settings):
     return sum(estimated_dofs(discretize(scene, settings)).values())
 
 
-def choose_models(scene, settings):
-    """(the scene with every "auto" patch's model chosen, the choice's report or None)."""
+def choose_models(scene, settings, a=None):
+    """(the scene with every "auto" patch's model chosen, the choice's report or None);
+    ``a``: the scene's a priori contact half-width, if known."""
     auto = [n for n, c in enumerate(scene.coatings) if c.model == AUTO]
     if not auto:
         return scene, None
     tolerance = settings.model_tolerance
-    a = contact_half_width(scene)
+    a = contact_half_width(scene) if a is None else a
     # while a patch is decided, the other undecided ones are shells (the cheapest)
     models = [("shell" if c.model == AUTO else c.model) for c in scene.coatings]
     patches = []
@@ -84,7 +85,8 @@ def prepare(scene, settings):
     settings the scene cannot take or a problem too large."""
     check_compatible(scene, settings)
     solved, scales = dimensionless(scene)
-    solved, model_choice = choose_models(solved, settings)
+    a = contact_half_width(solved)           # the a priori estimate, made once
+    solved, model_choice = choose_models(solved, settings, a)
     problem = discretize(solved, settings)
     check_size(problem)
     coarse = discretize(solved, coarse_settings(settings)) if settings.two_levels else None
@@ -92,7 +94,7 @@ def prepare(scene, settings):
     chosen = scene.with_models([c.model for c in solved.coatings])
     say = Say(scales, scene.units)
     return Plan(chosen, problem, model_choice, scales,
-                tuple(scene_warnings(chosen, scene, settings, say)
-                      + mesh_warnings(problem, say)),
+                tuple(scene_warnings(chosen, scene, settings, say, a * scales.length)
+                      + mesh_warnings(problem, say, a)),
                 strategy, coarse if strategy.two_levels else None)
 

@@ -37,7 +37,7 @@ Values are computed in the solver's b and E and said in the scene's units.
 
 import numpy as np
 
-from orchestrate.model.estimate import contact_half_width, estimated_errors, not_estimated
+from orchestrate.model.estimate import estimated_errors, not_estimated
 from orchestrate.model.scene import SHELL_MODELS
 
 STRAIN_LIMIT = 0.02          # linear elasticity drops the strain's quadratic term, about half
@@ -62,15 +62,13 @@ def base_depth(base):
     return base.height if base.shape == "block" else base.radius - base.shaft_radius
 
 
-def mesh_warnings(problem, say):
+def mesh_warnings(problem, say, a):
     """The warnings of a mesh too coarse for the contact the scene will make, before any
     work: fewer than ELEMENTS_ACROSS interface elements across the a priori contact width
-    (orchestrate/model/estimate.py's estimate; a half model's mirrored), or across a
-    patch's part of it (a pad narrower than the contact carries its own pressure). The
-    limit is studies/resolution.py's study: at 10 elements across, the peak pressure
-    within 0.2 % and the coating's largest stress within 1 % of a mesh ten times finer."""
+    2a (``a``: orchestrate/model/estimate.py's estimate, in b; a half model's mirrored), or
+    across a patch's part of it (a pad narrower than the contact carries its own
+    pressure). The limit is studies/resolution.py's (results/resolution.md)."""
     scene = problem.scene
-    a = contact_half_width(scene)
     contacts = [i for i in problem.interfaces if i.kind == "contact"]
     if a == 0 or not contacts:
         return []
@@ -107,13 +105,13 @@ def _element_length(x1, start, end):
     return 2.0 * float(np.median(np.diff(near)))
 
 
-def scene_warnings(scene, given, settings, say):
+def scene_warnings(scene, given, settings, say, a):
     """The warnings known before any work, from the ``scene`` (its models chosen) and the
     scene as ``given`` (which patches the user modelled, not "auto"), both in the scene's
-    units (the estimate's quantities are ratios: any consistent units do)."""
+    units (the estimate's quantities are ratios: any consistent units do), and its a
+    priori contact half-width ``a`` in those units."""
     warnings = []
     depth = base_depth(scene.base)
-    a = None                               # the contact half-width, once needed
     for number, (coating, asked) in enumerate(zip(scene.coatings, given.coatings), start=1):
         share = coating.thickness / depth
         if share > COATING_SHARE:
@@ -124,7 +122,6 @@ def scene_warnings(scene, given, settings, say):
                 "body; the base's clamping acts through it", share, COATING_SHARE))
         if asked.model not in SHELL_MODELS:
             continue
-        a = contact_half_width(scene) if a is None else a
         reason = not_estimated(scene, coating, a)
         if reason:
             warnings.append(_warning(
