@@ -8,6 +8,7 @@
 #   make discrete   a cylinder over a coating in patches, both models (results/discrete.png)
 #   make adequacy   where each coating model is adequate, and model = "auto" checked
 #                   on 36 held-out scenes (results/adequacy/)
+#   make gallery    the engineers' scenes against the monolithic solve (results/gallery.md)
 # Both install what they need first (FreeFEM from Debian, a pinned Python venv). Every
 # study writes a report beside its tables (results/*.md: what it measured, computed).
 
@@ -15,7 +16,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -107,6 +108,12 @@ bench: setup
 stability: setup
 	$(PYTHON) -m orchestrate sweep studies/sweeps/stability.toml || [ $$? -eq 1 ]  # 1: some runs fail, as expected
 	$(PYTHON) -m studies.stability results/stability
+
+# The engineers' scenes (orchestrate/scenes/gallery/), each solved with default settings
+# and by the monolithic solve of the same discrete problem: time to answer, iterations,
+# and the answers' distance from the monolithic ones (results/gallery.csv, gallery.md).
+gallery: setup
+	$(PYTHON) -m studies.gallery
 
 # The model error of each coating model over h2/a x E2/E (the paper's scene) and the
 # automatic choice on held-out scenes (about 40 minutes; finished scenes are kept in

@@ -29,6 +29,7 @@ from dataclasses import replace
 import numpy as np
 
 from orchestrate.ddm.robin import first_contact_set, robin_laws, updated_contact_set
+from orchestrate.ddm.robin_parameters import side_parameters
 
 
 def coarse_element_size(settings):
@@ -49,9 +50,11 @@ def coarse_settings(settings):
 
 
 def coarse_laws(coarse, layout, psi):
-    """The coarse problem's Robin laws for the contact set psi, inactive points held (the
-    fine active-set loop's)."""
-    return robin_laws(coarse, layout, psi, coarse.penalty, coarse.robin, hold_inactive=True)
+    """The coarse problem's Robin laws for the contact set psi, every side's parameter by
+    the fine run's rule, inactive points held (solved from its maps)."""
+    settings = coarse.settings
+    sides = side_parameters(coarse, coarse.robin, settings.robin_sides, settings.hold_contrast)
+    return robin_laws(coarse, layout, psi, coarse.penalty, sides, direct=True)
 
 
 def paired(fine, coarse):

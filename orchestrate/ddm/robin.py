@@ -71,35 +71,45 @@ class RobinLaw:
         return np.atleast_2d(g)
 
 
-def robin_laws(problem, layout, psi, theta, gamma, hold_inactive=False):
+def robin_laws(problem, layout, psi, theta, sides, direct=False):
     """The Robin law of every side of every interface for the contact set Psi
-    (concatenated over the contact interfaces): ``{(i, side): RobinLaw}``.
+    (concatenated over the contact interfaces): ``{(i, side): RobinLaw}``. ``sides``:
+    every side's Robin parameter gamma and whether it holds its inactive points, in
+    interface order, sides A then B (robin_parameters.side_parameters); ``direct``: every
+    side holds them (a solve from the subdomains' maps needs fixed matrices).
 
     Interface laws (16): on a contact where Psi = 1, t = (d - u_A - u_B)/theta on both
     sides (normal tractions, compression negative), elsewhere t = 0; on a bond the
     traction on side B is (u_A - u_B)/theta and on side A (u_B - u_A)/theta. Solving each
-    law for one side's Robin combination t + gamma u, with c = 1 - gamma theta:
+    law for one side's Robin combination t + gamma u (gamma the side's own), with
+    c = 1 - gamma theta:
         contact, side A:  alpha = gamma Psi,  g = d - u_B + c t_B / gamma
         contact, side B:  alpha = gamma Psi,  g = d - u_A + c t_A / gamma
         bond, side A:     alpha = gamma,      g = u_B - c t_B / gamma
         bond, side B:     alpha = gamma,      g = u_A - c t_A / gamma
     For gamma = 1/theta these are (21), (22), (23) with Psi u^k + (d - u1n - w)^- =
     Psi (d - neighbour) (METHOD.md, global components). At a fixed point the two sides'
-    tractions t1, t2 satisfy (2 - gamma theta)(t1 + t2) = 0 and then the law; so
-    gamma theta must stay away from 2 (Settings refuses gamma theta >= 1.5).
+    tractions t_A, t_B and the law's t satisfy (t_A - t_B) + gamma_A theta (t_B - t) = 0
+    and (t_B - t_A) + gamma_B theta (t_A - t) = 0, whose only solution is t_A = t_B = t
+    unless gamma_B theta - gamma_B / gamma_A = 1 (with one gamma: gamma theta = 2); so
+    every gamma theta must stay below 1 (Settings refuses gamma theta >= 1.5 for the
+    largest, and gamma_B / gamma_A > 0 keeps the second term away).
 
-    ``hold_inactive``: alpha = gamma on all of a contact, and where Psi = 0 the data is
-    the side's own trace, g = u^k. The fixed point is the same (there t = gamma (u - u) =
-    0), but no matrix depends on Psi any more: the workers factorise once per run."""
-    c = 1.0 - gamma * theta
+    A side that holds its inactive points: alpha = gamma on all of the contact, and
+    where Psi = 0 the data is the side's own trace, g = u^k. The fixed point is the same
+    (there t = gamma (u - u) = 0), but its matrix does not depend on Psi: its worker
+    factorises once per run (robin_parameters.py says where that pays)."""
     laws = {}
     psi_of = dict((i, psi[where]) for i, where in layout.contact_slices())
     for i, interface in enumerate(problem.interfaces):
         n, ones, zeros = interface.size, np.ones(interface.size), np.zeros(interface.size)
         for side in (0, 1):
+            parameter = sides[2 * i + side]
+            gamma = parameter.gamma
+            c = 1.0 - gamma * theta
             if interface.kind == "contact":
                 active = psi_of[i] > 0
-                if hold_inactive:
+                if parameter.hold_inactive or direct:
                     law = RobinLaw(np.full(n, gamma), np.where(active, 0.0, 1.0),
                                    np.where(active, -1.0, 0.0), np.where(active, c / gamma, 0.0),
                                    np.where(active, interface.gap, 0.0)[None, :])
@@ -272,15 +282,15 @@ class _Loop:
         self.estimate = math.inf
         self.direct = False       # whether this iteration solved its contact set directly
 
-    def laws(self, psi):
-        return robin_laws(self.problem, self.layout, psi, self.theta, self.gamma,
-                          self.strategy.hold_inactive)
+    def laws(self, psi, direct=False):
+        return robin_laws(self.problem, self.layout, psi, self.theta, self.strategy.sides,
+                          direct)
 
     def iterate(self, x, psi):
         """Solve every subdomain for the state x and the contact set psi; return x~. The
         groups of ``sweep`` solve one after the other, each from the state the groups
         before it left."""
-        laws, image, seconds = self.laws(psi), x, {"wait": 0.0}
+        laws, image, seconds = self.laws(psi, self.direct), x, {"wait": 0.0}
         for group in self.sweep:
             data = robin_data(self.layout, image, laws)
             traces, group_seconds, descent = self.solve(data, group)
@@ -482,7 +492,7 @@ class _ActiveSetLoop(_Loop):
         for iteration in range(1, knobs.max_iterations + 1):
             self.direct = system is not None
             if system is not None:
-                x, refined = system.fixed_point(self.laws(psi))
+                x, refined = system.fixed_point(self.laws(psi, direct=True))
                 rounding = max(self.relative_change(refined, x))
             image = self.iterate(x, psi)
             change = self.relative_change(image, x)
@@ -536,7 +546,7 @@ class _ActiveSetLoop(_Loop):
         if self.robin_maps is None:
             return None
         empty = np.zeros_like(self.layout.gap)
-        maps = self.robin_maps(robin_data(self.layout, x, self.laws(empty)))
+        maps = self.robin_maps(robin_data(self.layout, x, self.laws(empty, direct=True)))
         if maps is None:
             return None
         sides = {name: self.problem.sides_of(name) for name in maps}

@@ -19,10 +19,12 @@ _inner_solve and acted on by the loop; another Robin parameter (per interface, s
 another Parameter beside ``gamma``, resolved here, that the loop's laws read.
 """
 
+import math
 from dataclasses import asdict, dataclass, fields, replace
 from typing import Optional
 
 from orchestrate.ddm.coarse import coarse_element_size, paired
+from orchestrate.ddm.robin_parameters import side_parameters
 
 PAPER, ACTIVE_SET = "paper", "active-set"
 DIRECT, ITERATE, TWO_LEVEL = "direct", "iterate", "two-level"
@@ -109,8 +111,9 @@ class Strategy:
     sweep: tuple                    # groups of subdomains solved one after the other in
                                     # an iteration, each from the state the ones before
                                     # left (Problem.sweep), or one group: all at once
-    hold_inactive: bool             # the Robin coefficient on all of a contact, so that no
-                                    # matrix depends on the contact set (robin_laws)
+    sides: tuple                    # every interface side's gamma (E/b) and whether it
+                                    # holds its inactive points where the loop iterates
+                                    # (orchestrate/ddm/robin_parameters.py)
     inner_solve: InnerSolve
     theta: Parameter                # the penalty, b/E
     gamma: Parameter                # the Robin parameter, E/b
@@ -147,6 +150,9 @@ class Strategy:
             record[name].update(scene_value=getattr(self, name).value * factor, scene_unit=unit)
         record["gamma_theta"] = self.gamma.value * self.theta.value
         record["sweep"] = [list(group) for group in self.sweep]
+        factor, unit = in_scene["gamma"]
+        record["sides"] = [{**side, "scene_gamma": side["gamma"] * factor, "scene_unit": unit}
+                           for side in record["sides"]]
         return record
 
 
@@ -163,9 +169,11 @@ def plan_strategy(settings, problem, coarse=None):
         # the active-set loop solves the coatings from the bodies' fresh traces (a
         # Gauss-Seidel sweep; theirs are the cheap solves): fewer iterations
         sweep=(tuple(problem.subdomains),) if paper else problem.sweep,
-        # constant matrices: each worker factorises once per run (a few more
-        # iterations, much less time)
-        hold_inactive=not paper,
+        # two levels: the coarse level models the fine iteration with every side held
+        # (its maps need fixed matrices), so the fine loop holds them too
+        sides=side_parameters(problem, problem.robin, settings.robin_sides,
+                              math.inf if inner_solve.planned == TWO_LEVEL
+                              else settings.hold_contrast, paper),
         inner_solve=inner_solve,
         theta=Parameter(settings.theta, "b/E", problem.penalty,
                         default_rule if settings.theta == theta else "given (theta)"),

@@ -47,6 +47,7 @@ FACE_MESHES = ("shaped", "flat")
 SHAPES = ("block", "roller")
 METHODS = ("active-set", "paper")
 INNER_SOLVES = ("auto", "direct", "iterate", "two-level")   # a contact set's fixed point
+ROBIN_SIDES = ("neighbour", "equal")   # each interface side's gamma (ddm/robin_parameters.py)
 WORKERS = ("persistent", "fresh")
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
 MESH_LEVEL_LIMIT = 16   # the paper's mesh refined 16 times: about 7 million unknowns
@@ -62,6 +63,9 @@ KNOB_RANGES = {
     "robin_two_level_per_length": (*ROBIN_RANGE, "E", "gamma = robin_two_level_per_length "
                                    "/ element_size: beyond, the Robin exchange stops "
                                    "converging (robin's own range)"),
+    "hold_contrast": (0.0, 1e12, "factor", "0: no side holds, and every worker factorises "
+                      "again for each contact set; large: every side holds, and a soft "
+                      "body's inactive points crawl under a stiff neighbour's coefficient"),
     "auto_direct_unknowns": (0, 10 ** 6, "interface unknowns", "0: auto probes no new "
                              "worker's map; beyond, the dense interface system of the "
                              "maps outgrows any machine"),
@@ -485,6 +489,10 @@ class Settings:
                                    # auto_two_level_mesh_level, below it direct where the
                                    # maps cost less (auto_direct_unknowns), else iterate
     robin: Optional[float] = None  # Robin parameter gamma, E/b; None: robin_parameter
+    robin_sides: str = "neighbour"  # each side's gamma: "neighbour", gamma times the
+                                   # neighbour's plane-strain modulus over the stiffer
+                                   # body's (orchestrate/ddm/robin_parameters.py);
+                                   # "equal", gamma on every side
     rho: float = 0.5               # relaxation (24), in (0, 1]
     eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
     max_iterations: int = 3000
@@ -508,6 +516,10 @@ class Settings:
     robin_two_level_per_length: float = 4.0  # E: with two levels gamma is this over
                                     # element_size: the stiffness of the interface modes
                                     # the coarse mesh cannot see, which it damps fastest
+    hold_contrast: float = 4.0      # a side holds its inactive contact points (a matrix
+                                    # that never changes) unless its neighbour is more than
+                                    # this many times as stiff as its body (E*); such a side
+                                    # releases them (robin_parameters.py)
     # auto's inner solve:
     auto_direct_unknowns: int = 250  # interface unknowns: auto solves each contact set
                                     # directly while every new worker has at most this
@@ -557,6 +569,7 @@ class Settings:
         _choice("workers", self.workers, WORKERS)
         _choice("method", self.method, METHODS)
         _choice("inner_solve", self.inner_solve, INNER_SOLVES)
+        _choice("robin_sides", self.robin_sides, ROBIN_SIDES)
         _require(not (self.method == "paper" and self.inner_solve == "direct"), "inner_solve",
                  "inner_solve = 'direct' needs method = 'active-set': the paper's loop "
                  "updates its contact set at every iteration and has no fixed point to solve")

@@ -11,8 +11,9 @@ from orchestrate.errors import RunFailed
 from orchestrate.run.answers import END_ZONE, near_patch_ends
 from orchestrate.run.api import Result
 from orchestrate.run.api import solve as solve_result
-from orchestrate.run.monolithic import monolithic_curves, monolithic_solution
+from orchestrate.run.monolithic import monolithic_curves, monolithic_of, monolithic_solution
+from orchestrate.run.plan import prepare
 from orchestrate.run.solve import solve as solve_into
 
-__all__ = ["END_ZONE", "Result", "RunFailed", "monolithic_curves", "monolithic_solution",
-           "near_patch_ends", "solve_into", "solve_result"]
+__all__ = ["END_ZONE", "Result", "RunFailed", "monolithic_curves", "monolithic_of",
+           "monolithic_solution", "near_patch_ends", "prepare", "solve_into", "solve_result"]

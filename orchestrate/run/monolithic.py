@@ -12,9 +12,9 @@ import numpy as np
 
 from orchestrate.workers import freefem
 from orchestrate.ddm.contact import bond_traction, contact_stress
-from orchestrate.mesh.discretization import discretize
 from orchestrate.workers.exchange import ShellNumbers
 from orchestrate.workers.subdomains import write_inputs
+from orchestrate.run.plan import prepare
 
 
 def write_problem(problem, files, path):
@@ -83,13 +83,19 @@ def interface_stresses(problem, traces):
     return stresses
 
 
-def monolithic_solution(scene, settings):
-    """The monolithic solution of a scene, in a private folder: its problem, traces
-    (solve_monolithic) and interface stresses."""
-    problem = discretize(scene, settings)
+def monolithic_of(problem):
+    """The monolithic solution of a discrete problem (a run's plan's, say), in a private
+    folder: its traces (solve_monolithic) and interface stresses, in b and E."""
     with tempfile.TemporaryDirectory(prefix="monolithic-") as workdir:
         traces = solve_monolithic(problem, workdir)
-    return problem, traces, interface_stresses(problem, traces)
+    return traces, interface_stresses(problem, traces)
+
+
+def monolithic_solution(scene, settings):
+    """The monolithic solution of a scene: the problem a run of it solves (its plan's:
+    in b and E, every "auto" patch's model chosen), its traces and interface stresses."""
+    problem = prepare(scene, settings).problem
+    return (problem, *monolithic_of(problem))
 
 
 def monolithic_curves(scene, settings):

@@ -8,6 +8,8 @@ the iterated loop's answer within the loop's tolerance, with one iteration per c
 set.
 """
 
+import math
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -17,6 +19,7 @@ from orchestrate.errors import ParameterError
 from orchestrate.workers.exchange import RobinRequest
 from orchestrate.ddm.interface_system import InterfaceSystem
 from orchestrate.ddm.robin import robin_data, robin_laws, state_after_solve
+from orchestrate.ddm.robin_parameters import side_parameters
 from orchestrate.workers.robin_map import RobinMap
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
@@ -53,12 +56,17 @@ def _loop_image(problem, layout, maps, laws, x):
 
 
 @pytest.mark.parametrize("hold_inactive", [True, False])
-def test_the_direct_solution_is_a_fixed_point_of_the_loops_own_iteration(hold_inactive):
-    problem = discretize(paper_scene(h2=0.125, E2=5.0, model="elastic"), Settings())
+@pytest.mark.parametrize("rule, E1", [("equal", 1.0), ("neighbour", 100.0)])
+def test_the_direct_solution_is_a_fixed_point_of_the_loops_own_iteration(hold_inactive, rule,
+                                                                         E1):
+    """With one gamma or each side's own (a stiff indenter: gamma differs by side)."""
+    problem = discretize(paper_scene(h2=0.125, E2=5.0, E1=E1, model="elastic"), Settings())
     layout = StateLayout(problem.interfaces)
     rng = np.random.default_rng(7)
     psi = (rng.random(layout.gap.size) < 0.5).astype(float)
-    laws = robin_laws(problem, layout, psi, problem.penalty, problem.robin, hold_inactive)
+    sides = side_parameters(problem, problem.robin, rule, math.inf if hold_inactive else 0.0)
+    assert len({side.gamma for side in sides}) == (1 if rule == "equal" else 2)
+    laws = robin_laws(problem, layout, psi, problem.penalty, sides)
     maps = _random_maps(problem, laws, rng)
     sides = {name: problem.sides_of(name) for name in maps}
     x, refined = InterfaceSystem(layout, sides, maps).fixed_point(laws)

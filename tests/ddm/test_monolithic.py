@@ -63,6 +63,17 @@ CASES = {
     "coated roller, stretch shell": (_file("roller", model="stretch_shell"), TIGHT),
     "three patches, shell and 2D": (_file("discrete", **{"coating[2].model": "elastic"}), TIGHT),
     "full model, off-centre": (_off_centre_full_model(), TIGHT),
+    # contrast: each side's gamma from its neighbour, the soft side's inactive points
+    # released (ddm/robin_parameters.py), iterated and solved directly; at eps_u 1e-8, as
+    # the stopping test's estimate (the amplification of a contrast of 100 times the
+    # residual) cannot reach 1e-10 in double precision
+    "cylinder 100 E on a coated block, iterated": (
+        _file("cylinder", **{"indenter.E": 100.0}), Settings(eps_u=1e-8, inner_solve="iterate")),
+    "cylinder 100 E on a coated block, direct": (
+        _file("cylinder", **{"indenter.E": 100.0}), Settings(eps_u=1e-8, inner_solve="direct")),
+    "cylinder E/100 on a coated block, iterated": (
+        _file("cylinder", **{"indenter.E": 0.01, "load.force": 2e-4}),
+        Settings(eps_u=1e-8, inner_solve="iterate")),
 }
 
 

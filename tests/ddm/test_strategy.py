@@ -59,15 +59,19 @@ REPLACED_CONSTANTS = {
     "coarse_element_factor": 2.0,
     "coarse_newton_steps": 50,
 }
+# Knobs added since, each with the default that leaves every equal-bodies scene (the
+# figures') as it was: hold_contrast 4 holds every side of bodies up to 4 times apart
+# (holding costs no more iterations there, and no factorisation per contact set).
+ADDED_KNOBS = {"hold_contrast": 4.0}
 INTEGER_KNOBS = [key for key, value in REPLACED_CONSTANTS.items() if isinstance(value, int)]
 
 
 # ---- the knobs as settings --------------------------------------------------------------
 
 def test_the_knobs_default_to_the_constants_they_replaced():
-    assert set(REPLACED_CONSTANTS) == set(KNOB_RANGES)
+    assert set(REPLACED_CONSTANTS) | set(ADDED_KNOBS) == set(KNOB_RANGES)
     settings = Settings()
-    for key, value in REPLACED_CONSTANTS.items():
+    for key, value in {**REPLACED_CONSTANTS, **ADDED_KNOBS}.items():
         assert getattr(settings, key) == value and type(getattr(settings, key)) is type(value), key
 
 
@@ -168,7 +172,11 @@ def test_the_plan_resolves_the_strategy_from_the_settings(values, planned, gamma
     settings = Settings(**values)
     plan = prepare(paper_scene(), settings)
     strategy = plan.strategy
-    assert strategy.loop == "active-set" and strategy.hold_inactive
+    assert strategy.loop == "active-set"
+    # the paper's bodies are equal: every side has the run's gamma and holds
+    assert len(strategy.sides) == 2 * len(plan.problem.interfaces)
+    assert all(side.gamma == strategy.gamma.solver_value and side.hold_inactive
+               for side in strategy.sides)
     assert strategy.sweep == (("indenter", "base"), ("coating1",))
     assert strategy.inner_solve.asked == settings.inner_solve
     assert strategy.inner_solve.planned == planned
@@ -195,7 +203,9 @@ def test_the_plan_resolves_the_strategy_from_the_settings(values, planned, gamma
 def test_the_papers_loop_has_no_inner_solve_and_solves_every_subdomain_at_once():
     plan = prepare(paper_scene(), Settings(method="paper"))
     strategy = plan.strategy
-    assert strategy.loop == "paper" and not strategy.hold_inactive
+    assert strategy.loop == "paper"
+    assert all(side.gamma == pytest.approx(1e3) and not side.hold_inactive
+               for side in strategy.sides)
     assert strategy.inner_solve.planned == NO_INNER_SOLVE and strategy.inner_solve.fallback is None
     assert strategy.sweep == (tuple(plan.problem.subdomains),)
     assert set(strategy.sweep[0]) == {"indenter", "base", "coating1"}

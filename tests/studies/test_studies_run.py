@@ -2,6 +2,7 @@
 module's command line answers --help (it imports, through the tool's public API), and a
 non-editable install of the tool carries its FreeFEM forms but no study."""
 
+import json
 import os
 import shutil
 import subprocess
@@ -30,7 +31,9 @@ SOLVE_ELSEWHERE = """
 import json, orchestrate, orchestrate.paths
 result = orchestrate.solve(orchestrate.paper_scene(h2=0.25), {"eps_u": 1e-4})
 print(json.dumps({"forms": str(orchestrate.paths.FREEFEM_DIR),
-                  "converged": result.summary["converged"]}))
+                  "converged": result.summary["converged"],
+                  "gallery": sorted(p.name for p in
+                                    (orchestrate.paths.SCENES_DIR / "gallery").glob("*.toml"))}))
 """
 
 
@@ -63,6 +66,8 @@ def test_an_install_of_the_tool_has_its_forms_and_no_study(tmp_path):
     assert solved.returncode == 0, solved.stderr
     found = solved.stdout.strip().splitlines()[-1]
     assert '"converged": true' in found and site.strip() in found      # the installed forms
+    gallery = sorted(p.name for p in (PROJECT_DIR / "orchestrate/scenes/gallery").glob("*.toml"))
+    assert gallery and json.loads(found)["gallery"] == gallery      # and the gallery's scenes
     studies = subprocess.run([str(python), "-c", "import studies"], cwd=elsewhere, env=env,
                              capture_output=True, text=True, timeout=60)
     assert studies.returncode != 0 and "No module named 'studies'" in studies.stderr

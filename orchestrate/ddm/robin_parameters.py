@@ -1,0 +1,76 @@
+"""The Robin parameter of every interface side, and whether the side holds its inactive
+contact points.
+
+A Robin-Robin exchange converges fastest when each side's coefficient equals its
+neighbour's Dirichlet-to-Neumann response (the stiffness the neighbour offers at the
+interface): the error of one exchange is then zero at the wavelength where they match,
+and small at all others whichever body is stiffer (the choice of optimised Schwarz
+methods, Gander's "Optimized Schwarz methods", SIAM J. Numer. Anal. 44, 2006, and its
+heterogeneous versions). An elastic half-plane's response at wavenumber k is
+E* k / 2 with E* = E / (1 - nu^2) (plane strain), so the rule "neighbour" scales one
+number, the run's gamma (E/b, set for bodies of the stiffer body's modulus), by the
+neighbour's E* over the stiffer body's: the soft side of a contact gets the stiff one's
+large coefficient (almost a Dirichlet condition), the stiff side the soft one's small
+one (almost a Neumann condition). With equal bodies every side has gamma, as under the
+rule "equal" (one number for all sides, the rule of the figures' first runs). The
+paper's loop has gamma = 1/theta on every side.
+
+Holding the inactive points (robin.robin_laws' hold): the Robin coefficient on all of a
+contact, the side's own trace as data where Psi = 0, so that no matrix depends on the
+contact set. Where a side's coefficient is larger than its own body's stiffness, a held
+point relaxes towards its free position by a share gamma_side / (gamma_side + E*_own
+k / 2) per iteration only, which is near 1 on a soft body under a stiff neighbour: the
+loop crawls. A side holds unless its neighbour is more than hold_contrast times as stiff
+as its body; such a side releases its inactive points (alpha = gamma Psi), and its
+worker factorises again when the contact set changes. A solve from the subdomains'
+Robin maps needs every matrix fixed: it holds every side (robin_laws' ``direct``).
+"""
+
+from dataclasses import dataclass
+
+NEIGHBOUR, EQUAL = "neighbour", "equal"
+RULES = (NEIGHBOUR, EQUAL)
+
+
+@dataclass(frozen=True)
+class SideParameter:
+    """One side of one interface: its Robin parameter and whether it holds its inactive
+    points where the loop iterates."""
+
+    interface: str
+    side: int                   # 0: side A (the indenter, or the coating of a bond)
+    subdomain: str
+    neighbour: str
+    gamma: float                # E/b, in the solver's units
+    hold_inactive: bool
+
+
+def plane_strain_modulus(subdomain):
+    """E* = E / (1 - nu^2): the stiffness of the body's face per wavenumber, times 2."""
+    return subdomain.E / (1.0 - subdomain.nu ** 2)
+
+
+def side_parameters(problem, gamma, rule, hold_contrast, paper=False):
+    """Every side's SideParameter, in the order of problem.interfaces, sides A then B.
+    ``gamma``: the run's Robin parameter in the solver's units (a side's is never above
+    1/theta, as the run's is not: Settings.robin_choice); ``rule``: NEIGHBOUR or
+    EQUAL; ``hold_contrast``: a side holds its inactive points unless its neighbour is
+    more than this many times as stiff as its body (E*); ``paper``: the paper's loop (gamma on
+    every side, nothing held)."""
+    subdomains = problem.subdomains
+    base = next(name for name, sub in subdomains.items() if not sub.coating and not sub.stamp)
+    # a thin coating counts as the base it is bonded to: at the contact's scale the
+    # coated base offers the base's stiffness (to be refined for thick coatings)
+    stiffness = {name: plane_strain_modulus(subdomains[base] if sub.coating else sub)
+                 for name, sub in subdomains.items()}
+    reference = max(stiffness.values())
+    sides = []
+    for interface in problem.interfaces:
+        for side in (0, 1):
+            own, neighbour = (interface.sides[side].subdomain,
+                              interface.sides[1 - side].subdomain)
+            scale = stiffness[neighbour] / reference if rule == NEIGHBOUR and not paper else 1.0
+            hold = not paper and stiffness[neighbour] <= hold_contrast * stiffness[own]
+            sides.append(SideParameter(interface.name, side, own, neighbour,
+                                       min(gamma * scale, 1.0 / problem.penalty), hold))
+    return tuple(sides)

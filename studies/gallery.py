@@ -1,0 +1,214 @@
+"""The gallery: the scenes coating engineers pose (orchestrate/scenes/gallery/), each
+solved with default settings and by the monolithic solve of the same discrete problem
+(``python -m studies.gallery``, ``make gallery``).
+
+Every scene is solved twice, each from a cold start (workers started for it): by the
+Robin loop as a user runs it (orchestrate.solve, default settings), and by the
+monolithic solve (orchestrate/run/monolithic.py: every subdomain in one matrix, its
+contact set iterated) of the problem the run's plan made (the same mesh and interface
+points, the same coating models). The table says, per scene, what it spans (the
+indenter's and the coating's modulus over the base's, h2 and the body's width over the
+a priori contact half-width), the time to answer of each and their ratio, the loop's
+iterations and contact sets, the unknowns, and how far the loop's answer is from the
+monolithic one: peak pressure, total force, contact half-width, the bonds' peak normal
+and shear stresses (relative to the largest of each).
+
+Writes results/gallery.csv and results/gallery.md.
+"""
+
+import argparse
+import math
+import os
+import sys
+import time
+
+import numpy as np
+import pandas as pd
+
+import orchestrate
+from orchestrate.ddm import contact_half_width
+from orchestrate.model import contact_half_width as a_priori_half_width
+from orchestrate.model import scene_and_settings
+from orchestrate.paths import SCENES_DIR
+from orchestrate.run import RunFailed, monolithic_of, prepare
+from studies.paths import RESULTS_DIR
+from studies.report import Column, Report, command_line, listing, percent_g, seconds, significant
+
+GALLERY_DIR = SCENES_DIR / "gallery"
+
+
+def gallery_files(names=None):
+    files = sorted(GALLERY_DIR.glob("*.toml"))
+    if names:
+        files = [f for f in files if f.stem in names]
+    return files
+
+
+def _describe(scene, solved):
+    """What the scene spans, from its dimensionless form ``solved`` (b and E)."""
+    a = a_priori_half_width(solved)
+    base = solved.base
+    width = base.width if base.shape == "block" else base.radius
+    coating = max(solved.coatings, key=lambda c: c.E / base.E) if solved.coatings else None
+    return {"indenter_over_base": solved.indenter.E / base.E,
+            "coating_over_base": coating.E / base.E if coating else math.nan,
+            "h2_over_a": coating.thickness / a if coating and a else math.nan,
+            "width_over_a": width / a if a else math.nan,
+            "load": "force" if scene.load.force is not None else "displacement"}
+
+
+def _monolithic_answers(problem, stresses):
+    """Peak pressure, total force, half-width and the bonds' peak stresses of the
+    monolithic solution, in b and E."""
+    x, sigma, force = [], [], 0.0
+    bond_n, bond_t = [0.0], [0.0]
+    for i, interface in enumerate(problem.interfaces):
+        if interface.kind == "contact":
+            x.append(interface.position[:, 0])
+            sigma.append(stresses[i])
+            force -= interface.integrate(stresses[i] * interface.normal[:, 1])
+        else:
+            bond_t.append(float(np.max(np.abs(stresses[i][0]))))
+            bond_n.append(float(np.max(np.abs(stresses[i][1]))))
+    x, sigma = np.concatenate(x), np.concatenate(sigma)
+    symmetric = problem.scene.symmetric
+    return {"peak_pressure": float(-np.min(sigma)),
+            "total_force": (2.0 if symmetric else 1.0) * force,
+            "half_width": contact_half_width(x, sigma) if symmetric else math.nan,
+            "bond_normal": max(bond_n), "bond_shear": max(bond_t)}
+
+
+def _loop_answers(result, scales):
+    """The same of the loop's run, from its summary and tables, in b and E."""
+    summary, stress = result.summary, scales.stress
+    bonds = result.interface
+    return {"peak_pressure": -summary["peak_contact_stress"] / stress,
+            "total_force": summary["total_force"] / (stress * scales.length),
+            "half_width": (summary["contact_half_width"] / scales.length
+                           if result.summary["scene"]["symmetric"] else math.nan),
+            "bond_normal": (float(bonds.sigma_n.abs().max()) / stress if len(bonds) else 0.0),
+            "bond_shear": (float(bonds.sigma_t.abs().max()) / stress if len(bonds) else 0.0)}
+
+
+def _difference(loop, reference):
+    if math.isnan(reference) or reference == 0:
+        return math.nan if math.isnan(reference) else abs(loop)
+    return abs(loop / reference - 1.0)
+
+
+def measure(path, progress=print):
+    """One scene's row."""
+    scene, settings = scene_and_settings(path)
+    plan = prepare(scene, settings)
+    row = {"scene": path.stem, **_describe(scene, plan.problem.scene),
+           "models": ", ".join(sorted({c.model for c in plan.scene.coatings}))}
+    started = time.perf_counter()
+    try:
+        result = orchestrate.solve(path)
+    except RunFailed as failed:
+        row.update(converged=False, status=failed.summary.get("status"),
+                   time_s=time.perf_counter() - started,
+                   iterations=failed.summary.get("iterations"))
+        result = None
+    else:
+        summary = result.summary
+        row.update(converged=True, status="converged", time_s=time.perf_counter() - started,
+                   iterations=summary["iterations"],
+                   contact_sets=summary["active_set_changes"] + 1,
+                   inner_solve=summary["inner_solve_used"],
+                   unknowns=sum(summary["dofs"].values()),
+                   warnings=", ".join(w["code"] for w in summary["warnings"]))
+    progress(f"{path.stem}: loop {row['status']} in {row['time_s']:.1f} s")
+    started = time.perf_counter()
+    traces, stresses = monolithic_of(plan.problem)
+    row["monolithic_time_s"] = time.perf_counter() - started
+    row["monolithic_solves"] = traces["solves"]
+    row["time_ratio"] = row["time_s"] / row["monolithic_time_s"]
+    progress(f"{path.stem}: monolithic in {row['monolithic_time_s']:.1f} s")
+    reference = _monolithic_answers(plan.problem, stresses)
+    row["peak_pressure"] = reference["peak_pressure"] * plan.scales.stress
+    row["units"] = f"{scene.units.stress}, {scene.units.length}"
+    if result is not None:
+        loop = _loop_answers(result, plan.scales)
+        for key in reference:
+            row[f"{key}_difference"] = _difference(loop[key], reference[key])
+    return row
+
+
+def study(out, names=None, progress=print):
+    rows = [measure(path, progress) for path in gallery_files(names)]
+    table = pd.DataFrame(rows)
+    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
+    table.to_csv(out, index=False)
+    return table
+
+
+DIFFERENCES = {"peak_pressure_difference": "peak pressure",
+               "total_force_difference": "total force",
+               "half_width_difference": "half-width",
+               "bond_normal_difference": "bond normal",
+               "bond_shear_difference": "bond shear"}
+
+
+def write_report(table, out, command="python -m studies.gallery"):
+    report = Report("The gallery: engineers' scenes against the monolithic solve", command,
+                    data=[os.path.basename(os.path.splitext(out)[0]) + ".csv"])
+    report.text("Each scene of orchestrate/scenes/gallery/ solved with default settings "
+                "by the Robin loop, and by the monolithic solve of the same discrete "
+                "problem (same mesh, interface points and coating models), each from a "
+                "cold start on this machine; one run each.")
+    report.section("What each scene spans")
+    report.table(table, [
+        Column("scene", "scene"),
+        Column("indenter_over_base", "E1/E3", significant, "the indenter's modulus over the base's"),
+        Column("coating_over_base", "E2/E3", significant, "the stiffest patch's over the base's"),
+        Column("h2_over_a", "h2/a", significant, "its thickness over the a priori contact half-width"),
+        Column("width_over_a", "W/a", significant, "the base's half width (a roller's radius) over it"),
+        Column("load", "load"),
+        Column("models", "models", "{}", "the coating models the run solved (auto's choice)"),
+        Column("unknowns", "unknowns", "{:.0f}", "the subdomains' unknowns")])
+    report.section("Time to answer and accuracy")
+    report.table(table, [
+        Column("scene", "scene"),
+        Column("status", "outcome"),
+        Column("iterations", "iterations", "{:.0f}", "Robin iterations"),
+        Column("contact_sets", "sets", "{:.0f}", "contact sets the loop went through"),
+        Column("inner_solve", "inner solve"),
+        Column("time_s", "loop", seconds, "the run's wall time, workers started for it"),
+        Column("monolithic_time_s", "monolithic", seconds, "the monolithic solve's"),
+        Column("time_ratio", "ratio", significant, "loop over monolithic")]
+        + [Column(key, name, percent_g, "" if i else
+                  "the loop's answer against the monolithic one, relative")
+           for i, (key, name) in enumerate(DIFFERENCES.items())])
+    converged = table[table.converged]
+    if len(converged):
+        worst = converged[list(DIFFERENCES)].max().max()
+        report.finding(f"{len(converged)} of {len(table)} scenes converge with default "
+                       f"settings; their answers are within {percent_g(worst)} of the "
+                       f"monolithic solve's. The loop takes {significant(converged.time_s.median())} s "
+                       f"at the median (at most {significant(converged.time_s.max())} s), "
+                       f"{significant(converged.time_ratio.median())} times the monolithic "
+                       "solve's time at the median.")
+    failed = table[~table.converged]
+    if len(failed):
+        report.finding("Not converged: " + listing(f"{row.scene} ({row.status})"
+                                                  for row in failed.itertuples()) + ".")
+    return report.write(out)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", default=str(RESULTS_DIR / "gallery.csv"),
+                        help="the table; the report goes beside it (gallery.md)")
+    parser.add_argument("names", nargs="*", help="scenes of the gallery (default: all)")
+    args = parser.parse_args(argv)
+    table = study(args.out, args.names, progress=lambda text: print(text, file=sys.stderr))
+    with pd.option_context("display.width", 250, "display.max_columns", 40):
+        print(table.to_string(index=False))
+    print(args.out)
+    print(write_report(table, os.path.splitext(args.out)[0] + ".md",
+                       command_line("studies.gallery", argv)))
+
+
+if __name__ == "__main__":
+    main()
