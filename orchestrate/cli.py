@@ -55,8 +55,14 @@ _SETTINGS_HELP = {
                    "plane-strain modulus over the stiffer body's) or equal",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
-    "L divides every mesh size by L", "element_size": "interface element length at level 1, in b, or a length with its "
-    "unit in a scene with [units] (\"10 um\")",
+    "L divides every mesh size by L",
+    "element_size": "interface element length at level 1 (uniform), in b, or a length with "
+                    "its unit in a scene with [units] (\"10 um\"); default: sized to the "
+                    "contact (--contact-elements)",
+    "contact_elements": "where element_size is not given: interface elements across the a "
+                        "priori contact half-width, graded to b/16 away from the contact",
+    "element_size_far": "the interface elements' length away from the contact where it is "
+                        "sized (default b/16), in b or with its unit",
     "workers": "persistent FreeFEM workers, or a fresh process per solve (the naive baseline)",
     "worker_timeout": "seconds a worker may take to answer before the run fails",
     "memory_limit": "GiB the run may take (estimated before any work; default: 3/4 of the "
@@ -77,6 +83,8 @@ _SETTINGS_HELP = {
     "auto_two_level_mesh_level": "auto iterates with two levels from this mesh level up",
     "active_set_tolerance": "relative change at which the active-set loop updates its "
                             "contact set",
+    "predicted_set_tolerance": "the same where the first contact set is the one predicted "
+                               "from the a priori contact half-width",
     "estimate_margin": "factor on the stopping test's estimated error",
     "min_secants": "pairs of iterates of the final contact set before the estimate counts",
     "traction_floor": "tractions below this times gamma ||u|| count as zero",
@@ -382,11 +390,12 @@ def _solve(args):
          f"contact force {summary['total_force']:.4e} {units['force']}{descent}, contact "
          "zones " + ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in summary["contact_zones"])
          + f" {units['length']}; results in {args.out}")
-    element = settings.element_size / settings.mesh_level          # in b
-    _say(f"mesh: interface elements of {element * scene.units.b:.4g} {units['length']}"
-         + ("" if scene.units.length == "b" else
-            f" (element_size {settings.element_size:g} b at mesh level {settings.mesh_level}"
-            f", b = {scene.units.b:g} {units['length']})"))
+    element, far = summary["interface_element_size"], summary["interface_element_size_far"]
+    across = ", ".join(f"{n:.3g}" for n in summary["elements_across_contact"])
+    _say(f"mesh: interface elements of {element:.4g} {units['length']}"
+         + (f" at the contact, graded to {far:.4g} {units['length']} away from it"
+            if far > element * (1 + 1e-9) else "")
+         + f"; {across} across the contact zones")
     for warning in summary["warnings"]:
         print(f"warning ({warning['code']}): {warning['message']}", file=sys.stderr)
     if summary["warnings"] and args.strict:

@@ -162,7 +162,7 @@ def default_scene():
             "force_imbalance": max(abs(f / summary["contact_force"] - 1.0) for f in forces),
             "hertz_a": a, "hertz_p0": p0, "half_width": summary["contact_half_width"],
             "peak": -summary["peak_contact_stress"],
-            "element": Settings().element_size}
+            "element": summary["interface_element_size"]}
 
 
 ERROR_COLUMNS = [

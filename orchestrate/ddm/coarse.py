@@ -32,11 +32,14 @@ from orchestrate.ddm.robin import first_contact_set, robin_laws, updated_contact
 from orchestrate.ddm.robin_parameters import side_parameters
 
 
+def _coarsening(settings):
+    return settings.coarse_element_factor if settings.mesh_level == 1 else 1.0
+
+
 def coarse_element_size(settings):
     """The coarse level's element length at mesh level 1: the fine one's at mesh level 1,
     coarse_element_factor times it when the fine run is at mesh level 1 itself."""
-    return settings.element_size * (settings.coarse_element_factor if settings.mesh_level == 1
-                                    else 1.0)
+    return settings.element_length * _coarsening(settings)
 
 
 def coarse_settings(settings):
@@ -46,7 +49,9 @@ def coarse_settings(settings):
     no factorisation to probe)."""
     return replace(settings, mesh_level=1, theta=settings.theta,
                    robin=settings.robin_parameter, inner_solve="direct",
-                   workers="persistent", element_size=coarse_element_size(settings))
+                   workers="persistent", element_size=coarse_element_size(settings),
+                   element_size_far=(settings.element_size_far * _coarsening(settings)
+                                     if settings.element_size_far else None))
 
 
 def coarse_laws(coarse, layout, psi):

@@ -432,15 +432,31 @@ def _contraction_bound(changes, window):
     return changes[-1] * q / (1.0 - q) if q < 1 else math.inf
 
 
-def first_contact_set(scene, layout, x, supported=False):
+def first_contact_set(scene, layout, x, supported=False, predicted=None):
     """Psi of the state x: where the bodies interpenetrate; under a force, or when
-    ``supported``, at least the points the indenter touches first (without a support
-    the problem of a force is singular, and so is the whole interface system of a body
-    held only by its contact: interface_system.py)."""
+    ``supported``, where none do, the points within ``predicted`` (the contact points'
+    distances from the contact's centre, over the a priori half-width: at most 1), else
+    the points the indenter touches first (without a support the problem of a force is
+    singular, and so is the whole interface system of a body held only by its contact:
+    interface_system.py). A set near the answer's saves the semi-smooth updates that
+    grow one from a point (Strategy.first_contact)."""
     psi = (state_penetration(layout, x) < 0).astype(float)
     if (scene.load.force is not None or supported) and not psi.any():
+        if predicted is not None and np.any(predicted <= 1.0):
+            return (predicted <= 1.0).astype(float)
         psi = (layout.gap <= np.min(layout.gap) + 1e-12 * np.max(layout.gap)).astype(float)
     return psi
+
+
+def predicted_contact(problem, layout, half_width):
+    """The contact points' distances from the contact's centre over ``half_width`` (b),
+    in the layout's order; None without an estimate."""
+    if not half_width:
+        return None
+    scene = problem.scene
+    centre = 0.0 if scene.symmetric or scene.mirror_symmetric else scene.indenter.centre
+    x1 = np.concatenate([problem.interfaces[i].position[:, 0] for i in layout.contact_indices])
+    return np.abs(x1 - centre) / half_width
 
 
 class _ActiveSetLoop(_Loop):
@@ -486,9 +502,14 @@ class _ActiveSetLoop(_Loop):
         else:
             x = layout.zeros()
         system = self.interface_system(x)
-        psi = first_contact_set(self.problem.scene, layout, x, supported=system is not None)
+        psi = first_contact_set(self.problem.scene, layout, x, supported=system is not None,
+                                predicted=predicted_contact(self.problem, layout,
+                                                            self.strategy.first_contact))
+        predicted = (self.strategy.first_contact is not None
+                     and not np.any(state_penetration(layout, x) < 0))
         previous_psi, update, seen = None, 0, {psi.tobytes()}
-        tolerance = max(eps, knobs.active_set_tolerance)
+        tolerance = max(eps, knobs.predicted_set_tolerance if predicted
+                        else knobs.active_set_tolerance)
         for iteration in range(1, knobs.max_iterations + 1):
             self.direct = system is not None
             if system is not None:

@@ -41,6 +41,7 @@ class LoopKnobs:
     max_iterations: int
     rho: float
     active_set_tolerance: float
+    predicted_set_tolerance: float
     estimate_margin: float
     min_secants: int
     traction_floor: float
@@ -119,6 +120,10 @@ class Strategy:
     gamma: Parameter                # the Robin parameter, E/b
     coarse: Optional[CoarseMesh]    # with two levels, else None
     knobs: LoopKnobs
+    # under a force, the first contact set: the points within this a priori contact
+    # half-width (b; model/estimate.py) where the first state interpenetrates nowhere
+    # (robin.py's first_contact_set); None: the points touched first
+    first_contact: Optional[float] = None
 
     @property
     def two_levels(self):
@@ -147,7 +152,10 @@ class Strategy:
                     "gamma": (scales.stress / scales.length, f"{stress}/{length}")}
         record = asdict(self)
         for name, (factor, unit) in in_scene.items():
-            record[name].update(scene_value=getattr(self, name).value * factor, scene_unit=unit)
+            # from the solver's value: a scene in b and E may have a stiffer body's
+            # modulus other than 1
+            record[name].update(scene_value=getattr(self, name).solver_value * factor,
+                                scene_unit=unit)
         record["gamma_theta"] = self.gamma.value * self.theta.value
         record["sweep"] = [list(group) for group in self.sweep]
         factor, unit = in_scene["gamma"]
@@ -156,10 +164,11 @@ class Strategy:
         return record
 
 
-def plan_strategy(settings, problem, coarse=None):
+def plan_strategy(settings, problem, coarse=None, half_width=None):
     """The Strategy of ``problem`` (a run's discrete problem, in b and E) under
     ``settings``; ``coarse``: the coarse level's problem where two levels are asked
-    (Settings.two_levels), else None."""
+    (Settings.two_levels), else None; ``half_width``: the a priori contact half-width
+    (b), if known."""
     paper = settings.method == PAPER
     theta, default_rule = settings.default_theta()
     inner_solve = _inner_solve(settings, problem, coarse)
@@ -180,7 +189,9 @@ def plan_strategy(settings, problem, coarse=None):
         gamma=Parameter(gamma, "E/b", problem.robin, gamma_rule),
         coarse=(CoarseMesh(1, coarse_element_size(settings), _coarse_rule(settings))
                 if inner_solve.planned == TWO_LEVEL else None),
-        knobs=LoopKnobs.of(settings))
+        knobs=LoopKnobs.of(settings),
+        first_contact=(half_width if half_width and problem.scene.load.force is not None
+                       and not paper else None))
 
 
 def _inner_solve(settings, problem, coarse):

@@ -51,6 +51,10 @@ class BodyPlan:
     bore: float = 0.0          # roller
     indenter: Optional[object] = None   # the Indenter, for a profile curve
     lowest: float = 0.0        # the indenter's lowest point
+    # a face sized to the contact (discretization.py's FaceSpacing): (x1, x2 of the
+    # contact's centre, the reach of its finest elements, their growth beyond, the
+    # longest); None: face_size everywhere on the face
+    grading: Optional[tuple] = None
 
 
 def _interface_piece(label, vertices):
@@ -70,7 +74,7 @@ def _near(pieces):
     return float(np.max(np.ptp(points, axis=0)))
 
 
-def indenter_plan(scene, settings, indenter_face, contacts, face_size):
+def indenter_plan(scene, settings, indenter_face, contacts, face_size, grading=None):
     indenter = scene.indenter
     half, mirror = scene.symmetric, scene.mirror_symmetric
     left = 0.0 if half or mirror else indenter.centre - indenter.width
@@ -90,7 +94,8 @@ def indenter_plan(scene, settings, indenter_face, contacts, face_size):
     top = indenter_face.lowest + indenter.height
     return BodyPlan("indenter", tuple(face), left, right, top, half, mirror, face_size,
                     _near(face), _max_size(indenter.width, indenter.height),
-                    settings.mesh_level, indenter=indenter, lowest=indenter_face.lowest)
+                    settings.mesh_level, indenter=indenter, lowest=indenter_face.lowest,
+                    grading=grading)
 
 
 def _right_half(pieces):
@@ -110,7 +115,7 @@ def _max_size(*extent):
     return max(MAX_SIZE, max(extent) / 16.0)
 
 
-def base_plan(scene, settings, face, contacts, bonds, face_size):
+def base_plan(scene, settings, face, contacts, bonds, face_size, grading=None):
     base = scene.base
     half, mirror = scene.symmetric, scene.mirror_symmetric
     runs = sorted([(c.s[0], c.s[-1], "Contact", c) for c in contacts
@@ -150,9 +155,9 @@ def base_plan(scene, settings, face, contacts, bonds, face_size):
     if base.shape == "block":
         return BodyPlan("block", tuple(face_pieces), start, end, 0.0, half, mirror, face_size,
                         _near(face_pieces), _max_size(base.width, base.height),
-                        settings.mesh_level)
+                        settings.mesh_level, grading=grading)
     return BodyPlan("roller", tuple(face_pieces), start, end, 0.0, half, mirror, face_size,
                     _near(face_pieces), _max_size(base.radius), settings.mesh_level,
-                    radius=base.radius, bore=base.shaft_radius)
+                    radius=base.radius, bore=base.shaft_radius, grading=grading)
 
 

@@ -22,10 +22,14 @@ at the arc length xi along its mid-line; a contact trace is the displacement alo
 side's outward normal (towards the other body), a bond trace the tangential and normal
 components in the face's basis (t, n).
 
-Elements along the faces have the length Settings.element_size / mesh_level; a 2D
-coating has one layer of cells per b/8 of thickness, and cells at most MAX_ASPECT as
-wide as high, so a thin 2D coating refines its interface. A mirror-symmetric full
-model (Scene.mirror_symmetric) gets mirror-symmetric elements and meshes.
+Elements along the faces have the length Settings.element_size / mesh_level; where
+that is not given, it is sized to the contact (Settings.sized_to: contact_elements across
+the a priori half-width a) and graded back to element_size_far away from it: fine up to
+FINE_REACH a from the contact's centre, then growing by ALONG_GROWTH per unit length
+(FaceSpacing). A 2D coating has one layer of cells per b/8 of thickness, and cells at
+most MAX_ASPECT as wide as high, so a thin 2D coating refines its interface. A
+mirror-symmetric full model (Scene.mirror_symmetric) gets mirror-symmetric elements and
+meshes.
 """
 
 from dataclasses import dataclass
@@ -34,6 +38,7 @@ import math
 import numpy as np
 
 from orchestrate.mesh.body_plans import base_plan, indenter_plan
+from orchestrate.model.estimate import contact_half_width
 from orchestrate.model.geometry import IndenterFace, base_face, lowest_point
 from orchestrate.model.scene import MODELS, SHELL_MODELS, ParameterError
 
@@ -42,6 +47,11 @@ from orchestrate.model.scene import MODELS, SHELL_MODELS, ParameterError
 # wide as it is high (the cost the paper alludes to for h2 <= b/16).
 COATING_LAYER_HEIGHT = 0.125
 MAX_ASPECT = 2.0
+# Faces sized to the contact: fine up to FINE_REACH a priori half-widths from the
+# contact's centre (a contact wider than estimated stays resolved), then each element
+# about ALONG_GROWTH of its distance beyond longer (neighbours differ by ~15 %).
+FINE_REACH = 1.5
+ALONG_GROWTH = 0.15
 
 
 @dataclass(frozen=True, eq=False)
@@ -186,6 +196,69 @@ def element_nodes(s0, s1, count, split_at_zero=False):
     return np.linspace(s0, s1, count(s1 - s0) + 1)
 
 
+@dataclass(frozen=True)
+class FaceSpacing:
+    """The interface elements' length along the base's face (arc length s): ``fine`` up
+    to ``reach`` from ``centre``, then growing by ``growth`` per unit length up to
+    ``far``; uniform where far == fine."""
+    fine: float
+    far: float
+    centre: float = 0.0
+    reach: float = 0.0
+    growth: float = ALONG_GROWTH
+
+    @property
+    def graded(self):
+        return self.far > self.fine
+
+    def length(self, s, cap=math.inf):
+        beyond = np.maximum(np.abs(s - self.centre) - self.reach, 0.0)
+        return np.minimum(np.minimum(self.fine + self.growth * beyond, self.far), cap)
+
+    def nodes(self, s0, s1, cap=math.inf, split_at_zero=False):
+        """Element ends on [s0, s1], each element about length(s) (at most ``cap``) long;
+        with ``split_at_zero`` (a mirror-symmetric model, centre 0) mirrored about 0."""
+        if not self.graded:
+            def count(length):
+                uniform = _count(length, self.fine)
+                return uniform if math.isinf(cap) else max(uniform,
+                                                           _bounded(math.ceil(length / cap)))
+            return element_nodes(s0, s1, count, split_at_zero)
+        if split_at_zero and s0 < 0 < s1:
+            left = -self._graded(0.0, -s0, cap)[::-1]
+            return np.concatenate([left[:-1], self._graded(0.0, s1, cap)])
+        return self._graded(s0, s1, cap)
+
+    def _graded(self, s0, s1, cap):
+        """Nodes at equal steps of the element count, the integral of 1/length(s)."""
+        finest = min(self.fine, cap)
+        samples = _bounded(int(min(20 * (s1 - s0) / finest, 2e6)) + 2, "samples of the face")
+        s = np.linspace(s0, s1, samples)
+        density = 1.0 / self.length(s, cap)
+        count_at = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1])
+                                                    * np.diff(s))])
+        count = _bounded(max(1, round(count_at[-1])))
+        nodes = np.interp(np.linspace(0.0, count_at[-1], count + 1), count_at, s)
+        nodes[0], nodes[-1] = s0, s1
+        return nodes
+
+
+def face_spacing(scene, settings, face):
+    """The FaceSpacing of a scene's interfaces at the settings' mesh level (sized to its
+    contact first where element_size is not given)."""
+    if settings.element_size is None:
+        settings = settings.sized_to(contact_half_width(scene))
+    level = settings.mesh_level
+    fine = settings.element_size / level
+    far = (settings.element_size_far or settings.element_size) / level
+    if far <= fine:
+        return settings, FaceSpacing(fine, fine)
+    a = float(f"{contact_half_width(scene):.12g}")       # as Settings.sized_to does
+    centre = face.s_of_x1(0.0 if scene.symmetric or scene.mirror_symmetric
+                          else scene.indenter.centre)
+    return settings, FaceSpacing(fine, far, centre, FINE_REACH * a)
+
+
 def simpson(nodes, stretch=1.0):
     """The P2 nodes of the elements (ends, midpoints) and Simpson's weights L/6, 4L/6,
     L/6 of their length, ``stretch`` times the length in s."""
@@ -224,21 +297,20 @@ def discretize(scene, settings):
         raise ValueError(f"coating{undecided[0]}: model {scene.coatings[undecided[0] - 1].model!r} "
                          "must be decided before the scene is discretised")
     face = base_face(scene.base)
+    settings, spacing = face_spacing(scene, settings, face)
     level = settings.mesh_level
-    size = settings.element_size / level
     mirror = scene.mirror_symmetric
 
-    def patch_count(coating):
+    def patch_cap(coating):
+        """A 2D patch's cells are at most MAX_ASPECT times as wide as its layers."""
         if coating.model != "elastic":
-            return lambda length: _count(length, size)
-        layer = coating.thickness / coating_layers(coating, level)
-        return lambda length: max(_count(length, size),
-                                  _bounded(math.ceil(length / (MAX_ASPECT * layer))))
+            return math.inf
+        return MAX_ASPECT * (coating.thickness / coating_layers(coating, level))
 
     patches = []
     for number, coating in enumerate(scene.coatings, start=1):
         s0, s1 = face.s_of_x1(coating.start), face.s_of_x1(coating.end)
-        patches.append((number, coating, element_nodes(s0, s1, patch_count(coating), mirror)))
+        patches.append((number, coating, spacing.nodes(s0, s1, patch_cap(coating), mirror)))
     patches.sort(key=lambda item: item[2][0])
 
     def partners_in(s_lo, s_hi):
@@ -257,7 +329,7 @@ def discretize(scene, settings):
             in_zone.add(number)
         bare = _bare_stretches(s_lo, s_hi, [nodes for _, _, nodes in patches])
         for number, (a, b) in enumerate(bare, start=1):
-            partners.append((element_nodes(a, b, lambda length: _count(length, size), mirror),
+            partners.append((spacing.nodes(a, b, split_at_zero=mirror),
                              0.0, f"contact-base{number}", None))
         partners.sort(key=lambda item: item[0][0])
         if not partners:
@@ -340,13 +412,20 @@ def discretize(scene, settings):
     interfaces = tuple(contacts + bonds)
     # the finest element on any face, as length / elements (the mesh's size field)
     face_size = min(float(i.s[-1] - i.s[0]) / ((i.size - 1) // 2) for i in interfaces)
+    grading = None
+    if spacing.graded:         # the bodies' size field follows the face's (meshes.py)
+        face_size = min(float(np.min(np.diff(i.s[0::2]))) for i in interfaces)
+        x_c, y_c = face.point(np.array([spacing.centre]))[0]
+        grading = (float(x_c), float(y_c), spacing.reach, spacing.growth, spacing.far)
     ordered = {"indenter": Subdomain(
         "indenter", "body", scene.indenter.E, scene.indenter.nu,
-        indenter_plan(scene, settings, indenter_face, contacts, face_size), stamp=True)}
+        indenter_plan(scene, settings, indenter_face, contacts, face_size, grading),
+        stamp=True)}
     ordered.update((name, subdomains[name]) for name in sorted(
         subdomains, key=lambda n: int(n[len("coating"):])))
     ordered["base"] = Subdomain("base", "body", scene.base.E, scene.base.nu,
-                                base_plan(scene, settings, face, contacts, bonds, face_size))
+                                base_plan(scene, settings, face, contacts, bonds, face_size,
+                                          grading))
     return Problem(scene, settings, ordered, interfaces, lowest,
                    settings.theta / scene.modulus, settings.robin_parameter * scene.modulus)
 

@@ -7,7 +7,9 @@ so that both sides of an interface have their nodes at the same points; free pie
 are meshed by gmsh. Triangles are graded away from the face, as in the paper (about
 1372 and 1349 triangles per body at mesh level 1): the size is the face's element size
 near the interfaces and the free face as far again as they reach, and grows by GROWTH
-per unit distance from there, up to a maximum. A mirror-symmetric body is meshed on
+per unit distance from there, up to a maximum; on a face sized to the contact
+(BodyPlan.grading) the face's own element size is the graded one of its FaceSpacing,
+taken as a function of the distance from the contact's centre. A mirror-symmetric body is meshed on
 x1 >= 0 and mirrored, so that its mesh is mirror-symmetric too.
 """
 
@@ -274,7 +276,12 @@ def _gmsh_body(plan):
         fields.setNumbers(distance, "CurvesList", outline.face_curves)
         fields.setNumber(distance, "Sampling", 100 * level)
         size = fields.add("MathEval")
-        fields.setString(size, "F", f"Min({plan.face_size} + {GROWTH / level}*F{distance}, "
+        on_face = f"{plan.face_size}"
+        if plan.grading is not None:       # the face's own length there (FaceSpacing)
+            x_c, y_c, reach, growth, far = plan.grading
+            on_face = (f"Min({plan.face_size} + {growth}*Max(Sqrt((x - {x_c!r})^2 + "
+                       f"(y - {y_c!r})^2) - {reach!r}, 0), {far!r})")
+        fields.setString(size, "F", f"Min({on_face} + {GROWTH / level}*F{distance}, "
                                     f"{plan.max_size / level})")
         fields.setAsBackgroundMesh(size)
         for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints",

@@ -52,6 +52,9 @@ WORKERS = ("persistent", "fresh")
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
 MESH_LEVEL_LIMIT = 16   # the paper's mesh refined 16 times: about 7 million unknowns
 ELEMENT_SIZE_RANGE = (1e-4, None)   # b: the interface elements at mesh level 1
+# b: the interface elements' length at mesh level 1 where the contact is wider than
+# CONTACT_ELEMENTS of them (the paper's 32 on its coating of length 2), and away from it
+DEFAULT_ELEMENT_SIZE = 0.0625
 # The strategy's knobs (Settings, from theta_per_length on): each one's range, inclusive,
 # its unit and why beyond it the knob no longer does what it is for. An integer knob is
 # one whose default is an integer.
@@ -73,6 +76,8 @@ KNOB_RANGES = {
                                   "every mesh; above mesh_level's limit: never"),
     "active_set_tolerance": (1e-12, 1.0, "relative change", "below eps_u it is eps_u; "
                              "above 1 the iterates say nothing of the contact set"),
+    "predicted_set_tolerance": (1e-12, 1.0, "relative change", "below eps_u it is eps_u; "
+                                "above 1 the iterates say nothing of the contact set"),
     "estimate_margin": (1.0, 1e3, "factor", "below 1 the estimate drops under the error "
                         "the iterates show; far above, runs iterate for nothing"),
     "min_secants": (1, 1000, "pairs of iterates", "without a pair there is no "
@@ -497,7 +502,13 @@ class Settings:
     eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
     max_iterations: int = 3000
     mesh_level: int = 1            # 1: the paper's mesh; L: every mesh size divided by L
-    element_size: float = 0.0625   # length of an interface element at mesh level 1 (b)
+    element_size: Optional[float] = None  # interface elements' length at mesh level 1 (b),
+                                   # uniform; None: sized to the contact (sized_to)
+    contact_elements: float = 16.0  # sized to the contact: at least this many interface
+                                   # elements across the a priori contact half-width,
+                                   # graded to DEFAULT_ELEMENT_SIZE away from it
+    element_size_far: Optional[float] = None  # b: the elements' length away from the
+                                   # contact where sized_to refined it (None: uniform)
     workers: str = "persistent"    # FreeFEM workers: persistent, or a fresh process per solve
     worker_timeout: float = 600.0  # seconds a worker may take to answer before the run fails
     memory_limit: Optional[float] = None  # GiB the run may take; None: 3/4 of what is free
@@ -531,6 +542,11 @@ class Settings:
     active_set_tolerance: float = 1e-2  # relative change at which the contact set is
                                     # updated (eps_u once a set recurs): enough to tell
                                     # tension from compression at most points
+    predicted_set_tolerance: float = 1e-3  # the same, where the first contact set is the
+                                    # one predicted from the a priori half-width
+                                    # (Strategy.first_contact): it is near the answer's,
+                                    # and looser updates flip its edge points on the
+                                    # iterates' error (docs/method.md)
     # the stopping test (both loops):
     estimate_margin: float = 5.0    # factor on the estimated error: the amplification the
                                     # iterates show bounds the true one from below
@@ -584,11 +600,22 @@ class Settings:
                  f"mesh_level = {self.mesh_level!r} must be at most {MESH_LEVEL_LIMIT}: each "
                  "level divides every mesh size, and the paper's mesh at level "
                  f"{MESH_LEVEL_LIMIT} already has millions of unknowns")
-        _positive("element_size", self.element_size)
-        _require(self.element_size >= ELEMENT_SIZE_RANGE[0], "element_size",
-                 f"element_size = {self.element_size!r} must be at least "
-                 f"{ELEMENT_SIZE_RANGE[0]:g} b (a length in b, or with its unit in a scene with "
-                 "[units]): smaller, the faces need millions of elements")
+        for key in ("element_size", "element_size_far"):
+            value = getattr(self, key)
+            if value is None:
+                continue
+            _positive(key, value)
+            _require(value >= ELEMENT_SIZE_RANGE[0], key,
+                     f"{key} = {value!r} must be at least {ELEMENT_SIZE_RANGE[0]:g} b (a length "
+                     "in b, or with its unit in a scene with [units]): smaller, the faces "
+                     "need millions of elements")
+        _require(self.element_size_far is None or self.element_size is None
+                 or self.element_size_far >= self.element_size, "element_size_far",
+                 f"element_size_far = {self.element_size_far!r} must be at least element_size "
+                 f"= {self.element_size!r}: it is the elements' length away from the contact")
+        _require(_finite(self.contact_elements) and 1.0 <= self.contact_elements <= 1e4,
+                 "contact_elements", f"contact_elements = {self.contact_elements!r} must lie "
+                 "in [1, 1e4]: interface elements across the a priori contact half-width")
         self._check_knobs()
         if self.theta is None:          # the default, tied to the mesh (frozen: set once)
             theta, rule = self.default_theta()
@@ -659,14 +686,37 @@ class Settings:
                  f"min_secants = {self.min_secants!r} must be at most {name} = {history!r}: "
                  "the loop keeps no more pairs of iterates")
 
+    @property
+    def element_length(self):
+        """The finest interface element's length at mesh level 1 (b): element_size, or
+        DEFAULT_ELEMENT_SIZE until sized_to sizes it to a scene's contact."""
+        return DEFAULT_ELEMENT_SIZE if self.element_size is None else self.element_size
+
+    def sized_to(self, a):
+        """These settings with the interface elements sized to a contact of a priori
+        half-width ``a`` (b) where element_size is not given: contact_elements across a,
+        never longer than DEFAULT_ELEMENT_SIZE, graded back to that away from the contact
+        (element_size_far); a default theta follows the finest element. Given, element_size
+        wins (uniform elements)."""
+        if self.element_size is not None:
+            return self
+        far = DEFAULT_ELEMENT_SIZE if self.element_size_far is None else self.element_size_far
+        fine = min(far, a / self.contact_elements) if a > 0 else far
+        # 12 digits: a scene in mm and its twin in b and E get the same mesh bit for bit
+        fine = max(float(f"{fine:.12g}"), ELEMENT_SIZE_RANGE[0])
+        defaulted = self.theta == self.default_theta()[0]
+        return replace(self, element_size=fine,
+                       element_size_far=far if far > fine * (1 + 1e-12) else None,
+                       theta=None if defaulted else self.theta)
+
     def default_theta(self):
         """(theta where not given, b/E; the rule that gives it, in words): the paper's
-        for its loop, else theta_per_length times the interface element's length."""
+        for its loop, else theta_per_length times the finest interface element's length."""
         if self.method == "paper":
             return PAPER_THETA, "the paper's (method = 'paper')"
-        return (self.theta_per_length * self.element_size / self.mesh_level,
+        return (self.theta_per_length * self.element_length / self.mesh_level,
                 f"theta_per_length {self.theta_per_length:g} x element_size "
-                f"{self.element_size:g} b / mesh_level {self.mesh_level}")
+                f"{self.element_length:g} b / mesh_level {self.mesh_level}")
 
     @property
     def two_levels(self):
@@ -694,9 +744,9 @@ class Settings:
         if self.method == "paper":
             return 1.0 / self.theta, "1/theta (method = 'paper')"
         if self.two_levels:
-            gamma = self.robin_two_level_per_length / self.element_size
+            gamma = self.robin_two_level_per_length / self.element_length
             rule = (f"robin_two_level_per_length {self.robin_two_level_per_length:g} / "
-                    f"element_size {self.element_size:g} b (two levels)")
+                    f"element_size {self.element_length:g} b (two levels)")
         else:
             gamma, rule = self.robin_one_level, "robin_one_level"
         if gamma > 1.0 / self.theta:

@@ -320,7 +320,7 @@ def shorthand_values(scene):
 
 # Settings in b that may be given as a length with its unit ("10 um"), converted by the
 # scene's b: the mesh's size is set in b (Settings.element_size), which only a scene knows.
-SETTINGS_LENGTHS = ("element_size",)
+SETTINGS_LENGTHS = ("element_size", "element_size_far")
 
 
 def settings_of(values, units):

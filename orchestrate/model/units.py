@@ -51,6 +51,7 @@ KINDS = {
     "v": LENGTH, "w": LENGTH, "a_t": LENGTH, "a_n": LENGTH, "b_t": LENGTH, "b_n": LENGTH,
     "displacement": LENGTH, "descent": LENGTH, "contact_half_width": LENGTH,
     "contact_half_width_estimate": LENGTH, "contact_zones": LENGTH,
+    "interface_element_size": LENGTH, "interface_element_size_far": LENGTH,
     # stresses
     "sigma_n": STRESS, "sigma_t": STRESS, "sigma_eq": STRESS, "s11": STRESS, "s22": STRESS,
     "s12": STRESS, "s33": STRESS, "stress": STRESS, "sigma11_top": STRESS,
@@ -68,7 +69,7 @@ KINDS = {
         "active_set_changed", "active_set_update", "direct", "iterations", "final_relative_change",
         "active_set_changes", "tolerance", "patch", "estimated_error",
         "h2_over_a", "contact", "bond", "shell", "stretch_shell", "elastic",
-        "mesh_dependent", "converged", "end_zone")},
+        "mesh_dependent", "converged", "end_zone", "elements_across_contact")},
     **{name: SECONDS for name in ("seconds", "wait", "wall_time_s", "setup_time_s",
                                   "time_per_iteration_s")},
     "normal_mismatch_deg": DEGREES,

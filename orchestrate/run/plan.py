@@ -86,11 +86,12 @@ def prepare(scene, settings):
     check_compatible(scene, settings)
     solved, scales = dimensionless(scene)
     a = contact_half_width(solved)           # the a priori estimate, made once
+    settings = settings.sized_to(a)          # the mesh sized to the contact
     solved, model_choice = choose_models(solved, settings, a)
     problem = discretize(solved, settings)
     check_size(problem)
     coarse = discretize(solved, coarse_settings(settings)) if settings.two_levels else None
-    strategy = plan_strategy(settings, problem, coarse)
+    strategy = plan_strategy(settings, problem, coarse, a)
     chosen = scene.with_models([c.model for c in solved.coatings])
     say = Say(scales, scene.units)
     return Plan(chosen, problem, model_choice, scales,

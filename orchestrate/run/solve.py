@@ -44,7 +44,7 @@ from orchestrate.run import answers
 from orchestrate.run.coarse_level import CoarseLevel
 from orchestrate.run.outputs import RunFiles, history_table, shell_table
 from orchestrate.run.plan import prepare
-from orchestrate.run.validity import Say, forms_edited_warning, run_warnings
+from orchestrate.run.validity import Say, elements_across, forms_edited_warning, run_warnings
 from orchestrate.run.warm_start import start_state
 from orchestrate.workers import freefem
 from orchestrate.workers.provenance import forms_hashes, provenance
@@ -160,6 +160,11 @@ def solve_run(scene, settings, out_dir, progress=None, overwrite=False, start_fr
             "started_from": (start_name or str(start_from) if first_iterate is not None
                              and settings.method != "paper" else None),
             "dofs": dofs,
+            # the interface elements as meshed (Settings.sized_to), at the contact and away
+            "interface_element_size": problem.settings.element_size / problem.settings.mesh_level,
+            "interface_element_size_far": ((problem.settings.element_size_far or
+                                            problem.settings.element_size)
+                                           / problem.settings.mesh_level),
             "workers_kept": kept,
             "provenance": provenance(forms),
             "sweep_point": sweep_point,
@@ -299,6 +304,8 @@ def _write_results(problem, loop, outputs, run_files):
         "peak_interface_stress": float(np.min(np.concatenate(bonds))) if bonds else None,
         "contact_half_width": _half_width(scene, x_contact, sigma_contact, zones),
         "contact_zones": [list(zone) for zone in zones],
+        "elements_across_contact": [across for across, _ in
+                                    elements_across(x_contact, scene.symmetric, zones)],
         "descent": loop.descent,
         "total_force": (2.0 if scene.symmetric else 1.0) * contact_force,
         "interfaces": per_interface,

@@ -96,6 +96,18 @@ def mesh_warnings(problem, say, a):
     return warnings
 
 
+def elements_across(x1, symmetric, zones):
+    """(interface elements across, their length) of every contact zone [start, end] (a
+    zone from a half model's axis: across its mirror image too); ``x1`` the contact
+    points, the P2 elements' ends and midpoints."""
+    counted = []
+    for start, end in zones:
+        width = (end - start) * (2.0 if symmetric and start <= 0.0 else 1.0)
+        element = _element_length(x1, start, end)
+        counted.append((width / element if element > 0 else 0.0, element))
+    return counted
+
+
 def _element_length(x1, start, end):
     """The interface elements' length over [start, end] (at least the points nearest
     to it): the points are the P2 elements' ends and midpoints, two to an element."""
@@ -267,10 +279,8 @@ def _resolution_warnings(x1, symmetric, results, say):
     if not len(x1):
         return []
     warnings = []
-    for start, end in results["contact_zones"]:
-        width = (end - start) * (2.0 if symmetric and start <= 0.0 else 1.0)
-        element = _element_length(x1, start, end)
-        across = width / element if element > 0 else 0.0
+    zones = results["contact_zones"]
+    for (start, end), (across, element) in zip(zones, elements_across(x1, symmetric, zones)):
         if across < ELEMENTS_ACROSS:
             warnings.append(_warning(
                 "coarse_contact", f"the contact zone [{say.length(start)}, "

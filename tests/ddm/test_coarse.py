@@ -135,7 +135,9 @@ def test_two_levels_carry_a_force_load(tmp_path):
                        str(tmp_path / way)) for way in ("two-level", "iterate")}
     assert runs["two-level"]["descent"] == pytest.approx(runs["iterate"]["descent"],
                                                          rel=2 * EPS_U)
-    assert runs["two-level"]["iterations"] < runs["iterate"]["iterations"] / 4  # 33, 178
+    # the coarse level saves most of the iterations (fewer since the iterated loop starts
+    # from the predicted contact set: Strategy.first_contact)
+    assert runs["two-level"]["iterations"] < runs["iterate"]["iterations"] / 3
 
 
 def test_a_fine_session_iterates_its_kept_workers_with_two_levels(tmp_path):
@@ -173,8 +175,8 @@ def test_two_levels_on_the_papers_mesh_coarsen_its_interface_elements(tmp_path):
     like-for-like count of iterations from level 1 to 3 needs): the answer is the direct
     solve's within the tolerance, in fewer iterations than the plain loop's."""
     scene = paper_scene(h2=0.125, E2=5.0, model="elastic")
-    assert coarse_element_size(Settings()) == 2 * Settings().element_size
-    assert coarse_element_size(Settings(mesh_level=3)) == Settings().element_size
+    assert coarse_element_size(Settings()) == 2 * Settings().element_length
+    assert coarse_element_size(Settings(mesh_level=3)) == Settings().element_length
     fine = discretize(scene, Settings())
     coarse = discretize(scene, Settings(element_size=coarse_element_size(Settings())))
     assert [len(c.s) for c in coarse.interfaces] == [(len(f.s) + 1) // 2   # 33, 65

@@ -43,6 +43,7 @@ REPLACED_CONSTANTS = {
     "auto_direct_unknowns": 250,
     "auto_two_level_mesh_level": 2,
     "active_set_tolerance": 1e-2,
+    "predicted_set_tolerance": 1e-3,
     "estimate_margin": 5.0,
     "min_secants": 3,
     "traction_floor": 1e-6,
@@ -219,6 +220,8 @@ def test_the_record_says_theta_and_gamma_in_the_scenes_units_too():
     plan = prepare(scene, settings)
     record = json.loads(json.dumps(plan.strategy.record(plan.scales, scene.units)))
     b, modulus = plan.scales.length, plan.scales.stress
+    settings = plan.problem.settings            # the mesh sized to the contact, and theta
+    assert settings.theta < Settings().theta    # with it (Settings.sized_to)
     assert record["theta"]["value"] == settings.theta and record["theta"]["unit"] == "b/E"
     assert record["theta"]["scene_value"] == pytest.approx(settings.theta * b / modulus)
     assert record["theta"]["scene_unit"] == "mm/MPa"
@@ -227,6 +230,18 @@ def test_the_record_says_theta_and_gamma_in_the_scenes_units_too():
     assert record["gamma"]["scene_unit"] == "MPa/mm"
     assert record["gamma_theta"] == pytest.approx(settings.robin_parameter * settings.theta)
     assert record["knobs"] == {f.name: getattr(settings, f.name) for f in fields(LoopKnobs)}
+
+
+def test_the_record_in_a_scene_whose_stiffer_body_is_not_of_modulus_one():
+    """gallery/near_rigid_cylinder.toml is in b and E with the indenter's E = 1000: the
+    scene's gamma is 1000 times the value in the stiffer body's E/b."""
+    scene, settings = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
+    plan = prepare(scene, settings)
+    record = json.loads(json.dumps(plan.strategy.record(plan.scales, scene.units)))
+    assert record["gamma"]["scene_value"] == pytest.approx(1000.0 * settings.robin_parameter)
+    assert record["theta"]["scene_value"] == pytest.approx(settings.theta / 1000.0)
+    assert max(side["scene_gamma"] for side in record["sides"]) == pytest.approx(
+        record["gamma"]["scene_value"])
 
 
 def test_a_pending_inner_solve_is_recorded_once_decided():
@@ -405,3 +420,25 @@ def test_a_coarser_coarse_level_gives_the_same_answer(tmp_path):
     assert four["strategy"]["coarse"]["element_size"] == 0.25
     assert twice["strategy"]["coarse"]["element_size"] == 0.125
     assert four["peak_contact_stress"] == pytest.approx(twice["peak_contact_stress"], rel=1e-5)
+
+
+def test_under_a_force_the_first_contact_set_is_the_predicted_one():
+    """Strategy.first_contact: the a priori half-width under a force, none under a
+    descent (the interpenetration is the first set; the paper's loop takes no force);
+    the first set is the contact points within it."""
+    from orchestrate.ddm.robin import first_contact_set, predicted_contact
+    from orchestrate.ddm.state import StateLayout
+    from orchestrate.model.estimate import contact_half_width
+    scene, settings = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
+    plan = prepare(scene, settings)
+    a = contact_half_width(plan.problem.scene)
+    assert plan.strategy.first_contact == pytest.approx(a)
+    layout = StateLayout(plan.problem.interfaces)
+    predicted = predicted_contact(plan.problem, layout, plan.strategy.first_contact)
+    psi = first_contact_set(plan.problem.scene, layout, layout.zeros(), predicted=predicted)
+    x1 = np.concatenate([plan.problem.interfaces[i].position[:, 0]
+                         for i in layout.contact_indices])
+    assert np.array_equal(psi > 0, x1 <= a) and 5 < psi.sum() < len(psi)
+    touched = first_contact_set(plan.problem.scene, layout, layout.zeros())
+    assert touched.sum() == 1
+    assert prepare(paper_scene(), Settings()).strategy.first_contact is None

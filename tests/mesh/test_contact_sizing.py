@@ -1,0 +1,105 @@
+"""Interface elements sized to the contact (Settings.sized_to, discretization.py's
+FaceSpacing): contact_elements across the a priori half-width, graded back to b/16 away
+from it; an explicit element_size wins; the paper's scenes keep their b/16 mesh; the
+bodies' meshes have exactly the graded face's vertices."""
+
+import math
+
+import numpy as np
+import pytest
+
+from orchestrate.mesh.discretization import FINE_REACH, FaceSpacing, discretize
+from orchestrate.mesh.meshes import body_mesh
+from orchestrate.model.estimate import contact_half_width
+from orchestrate.model.scene import DEFAULT_ELEMENT_SIZE, Settings
+from orchestrate.model.scene_file import SCENES_DIR, paper_scene, scene_and_settings
+from orchestrate.run import prepare
+
+TIN = SCENES_DIR / "gallery" / "tin_on_steel.toml"
+
+
+def _element_lengths(interface):
+    ends = interface.s[0::2]
+    return ends[:-1], np.diff(ends)
+
+
+@pytest.fixture(scope="module")
+def tin():
+    scene, settings = scene_and_settings(TIN)
+    plan = prepare(scene, settings)
+    return plan, contact_half_width(plan.problem.scene)
+
+
+def test_a_small_contact_gets_contact_elements_across_its_half_width(tin):
+    plan, a = tin
+    settings = plan.problem.settings
+    assert a < 0.5                       # the contact is much narrower than b
+    assert settings.element_size == pytest.approx(a / Settings().contact_elements, rel=1e-11)
+    assert settings.element_size_far == DEFAULT_ELEMENT_SIZE
+    for interface in plan.problem.contacts:
+        start, length = _element_lengths(interface)
+        near = start + length <= FINE_REACH * a
+        assert np.all(length[near] <= settings.element_size * 1.05)
+        assert np.all(length <= DEFAULT_ELEMENT_SIZE * 1.05)
+
+
+def test_the_elements_grow_gradually_away_from_the_contact(tin):
+    plan, _ = tin
+    lengths = np.concatenate([_element_lengths(i)[1] for i in plan.problem.interfaces
+                              if i.kind == "contact"])
+    assert lengths.max() > 2.5 * lengths.min()          # graded, not uniform
+    ratio = lengths[1:] / lengths[:-1]
+    assert np.all(ratio < 1.3) and np.all(ratio > 1 / 1.3)
+
+
+def test_the_default_penalty_follows_the_finest_element(tin):
+    plan, _ = tin
+    settings = plan.problem.settings
+    assert settings.theta == pytest.approx(settings.theta_per_length * settings.element_size)
+
+
+def test_an_explicit_element_size_gives_uniform_elements():
+    scene, _ = scene_and_settings(TIN)
+    plan = prepare(scene, Settings(element_size=0.05))
+    assert plan.problem.settings.element_size == 0.05
+    for interface in plan.problem.contacts:
+        _, length = _element_lengths(interface)
+        assert np.allclose(length, length[0], rtol=1e-9)
+
+
+def test_the_papers_scene_keeps_its_mesh():
+    """Its contact is about b wide: sixteen elements across it are longer than b/16."""
+    settings = prepare(paper_scene(), Settings()).problem.settings
+    assert settings.element_size == DEFAULT_ELEMENT_SIZE and settings.element_size_far is None
+    assert settings.theta == Settings().theta
+    sized = discretize(paper_scene(), Settings())
+    given = discretize(paper_scene(), Settings(element_size=DEFAULT_ELEMENT_SIZE))
+    for a, b in zip(sized.interfaces, given.interfaces):
+        assert np.array_equal(a.s, b.s)
+
+
+def test_face_spacing_nodes():
+    spacing = FaceSpacing(0.01, 0.1, centre=0.0, reach=0.2)
+    nodes = spacing.nodes(-1.0, 1.0, split_at_zero=True)
+    assert nodes[0] == -1.0 and nodes[-1] == 1.0 and 0.0 in nodes
+    assert np.allclose(nodes, -nodes[::-1], rtol=0, atol=1e-15)      # mirror symmetric
+    lengths = np.diff(nodes)
+    middle = np.abs(nodes[:-1] + 0.5 * lengths) < 0.2
+    assert np.allclose(lengths[middle], 0.01, rtol=0.05)
+    assert lengths.max() == pytest.approx(0.1, rel=0.1)
+    capped = spacing.nodes(0.3, 1.0, cap=0.02)
+    assert np.diff(capped).max() <= 0.02 * 1.05
+
+
+def test_the_bodies_meshes_have_the_graded_faces_vertices(tin):
+    plan, _ = tin
+    problem = plan.problem
+    for body in ("indenter", "base"):
+        mesh = body_mesh(problem.subdomains[body].plan)
+        nodes = {tuple(p) for p in mesh.points}
+        for i, k in problem.sides_of(body):
+            vertices = problem.interfaces[i].sides[k].place[0::2]
+            assert all(tuple(v) in nodes for v in vertices)
+        # graded: far fewer triangles than a uniform mesh of the finest elements
+        assert len(mesh.cells_dict["triangle"]) < 20000
+        assert math.isfinite(mesh.points.max())
