@@ -50,7 +50,8 @@ def _describe(scene, solved):
     base = solved.base
     width = base.width if base.shape == "block" else base.radius
     coating = max(solved.coatings, key=lambda c: c.E / base.E) if solved.coatings else None
-    return {"indenter_over_base": solved.indenter.E / base.E,
+    return {"indenter_over_base": (math.inf if solved.indenter.rigid
+                                   else solved.indenter.E / base.E),
             "coating_over_base": coating.E / base.E if coating else math.nan,
             "h2_over_a": coating.thickness / a if coating and a else math.nan,
             "width_over_a": width / a if a else math.nan,

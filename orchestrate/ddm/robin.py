@@ -257,7 +257,8 @@ def displacement_scale(problem):
     gap = max((float(np.max(i.gap)) for i in problem.contacts), default=0.0)
     if scene.load.displacement is not None:
         return scene.load.displacement + gap
-    moduli = [scene.indenter.E, scene.base.E] + [c.E for c in scene.coatings]
+    moduli = ([] if scene.indenter.rigid else [scene.indenter.E]) + [scene.base.E] + [
+        c.E for c in scene.coatings]
     return scene.load.force / min(moduli) + gap
 
 
@@ -448,6 +449,20 @@ def first_contact_set(scene, layout, x, supported=False, predicted=None):
     return psi
 
 
+def held_indenter_state(problem, layout):
+    """The zero state, but for a rigid indenter under a descent: its traces are known
+    (its one unknown q = -Delta: the trace c2 q, subdomain_rigid.idp), so the first
+    contact set is where its face at that descent passes the base's (the zero state
+    interpenetrates nowhere, and an empty set leaves nothing to exchange)."""
+    x = layout.zeros()
+    scene = problem.scene
+    if scene.indenter.rigid and scene.load.displacement is not None:
+        for i in layout.contact_indices:
+            c2 = problem.interfaces[i].sides[0].coefficients[0][:, 1]
+            x[layout.slices["u", i, 0]] = -scene.load.displacement * c2
+    return x
+
+
 def predicted_contact(problem, layout, half_width):
     """The contact points' distances from the contact's centre over ``half_width`` (b),
     in the layout's order; None without an estimate."""
@@ -500,7 +515,7 @@ class _ActiveSetLoop(_Loop):
         elif self.coarse is not None:
             x = self.coarse.first_state()
         else:
-            x = layout.zeros()
+            x = held_indenter_state(self.problem, layout)
         system = self.interface_system(x)
         psi = first_contact_set(self.problem.scene, layout, x, supported=system is not None,
                                 predicted=predicted_contact(self.problem, layout,

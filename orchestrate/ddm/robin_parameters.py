@@ -63,7 +63,9 @@ def side_parameters(problem, gamma, rule, hold_contrast, paper=False):
     # coated base offers the base's stiffness (to be refined for thick coatings)
     stiffness = {name: plane_strain_modulus(subdomains[base] if sub.coating else sub)
                  for name, sub in subdomains.items()}
-    reference = max(stiffness.values())
+    # gamma is set for the stiffer elastic body; a rigid one's (infinite) caps its
+    # neighbours' sides at 1/theta
+    reference = max(value for value in stiffness.values() if value < float("inf"))
     sides = []
     for interface in problem.interfaces:
         for side in (0, 1):

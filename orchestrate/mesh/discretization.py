@@ -1,7 +1,8 @@
 """The scene as a list of subdomains and of the interfaces between them.
 
-Subdomains: the indenter and the base (P2 elastic bodies meshed by gmsh), and one per
-coating patch (a shell on its mid-line, or a P2 body on a structured mesh). Interfaces:
+Subdomains: the indenter and the base (P2 elastic bodies meshed by gmsh; a rigid
+indenter has one unknown and no mesh), and one per coating patch (a shell on its
+mid-line, or a P2 body on a structured mesh). Interfaces:
 
     bond-coatingI     patch I's bottom bonded to the base (side A: the patch, side B:
                       the base), two components: tangential and normal displacement;
@@ -124,10 +125,10 @@ class ShellSpec:
 @dataclass(frozen=True)
 class Subdomain:
     name: str
-    kind: str                  # "body" or "shell"
+    kind: str                  # "body", "shell" or "rigid" (a rigid indenter)
     E: float
     nu: float
-    plan: object               # BodyPlan, CoatingPlan or ShellSpec
+    plan: object               # BodyPlan, CoatingPlan, ShellSpec, or None (rigid)
     stamp: bool = False        # the indenter: loaded by the stamp
     coating: bool = False      # a coating patch: its interfaces meet the bodies only
 
@@ -417,10 +418,15 @@ def discretize(scene, settings):
         face_size = min(float(np.min(np.diff(i.s[0::2]))) for i in interfaces)
         x_c, y_c = face.point(np.array([spacing.centre]))[0]
         grading = (float(x_c), float(y_c), spacing.reach, spacing.growth, spacing.far)
-    ordered = {"indenter": Subdomain(
-        "indenter", "body", scene.indenter.E, scene.indenter.nu,
-        indenter_plan(scene, settings, indenter_face, contacts, face_size, grading),
-        stamp=True)}
+    if scene.indenter.rigid:           # one unknown, no mesh (freefem/subdomain_rigid.idp)
+        indenter = Subdomain("indenter", "rigid", math.inf, scene.indenter.nu, None,
+                             stamp=True)
+    else:
+        indenter = Subdomain(
+            "indenter", "body", scene.indenter.E, scene.indenter.nu,
+            indenter_plan(scene, settings, indenter_face, contacts, face_size, grading),
+            stamp=True)
+    ordered = {"indenter": indenter}
     ordered.update((name, subdomains[name]) for name in sorted(
         subdomains, key=lambda n: int(n[len("coating"):])))
     ordered["base"] = Subdomain("base", "body", scene.base.E, scene.base.nu,

@@ -51,7 +51,9 @@ def estimated_dofs(problem):
     dofs = {}
     for name, subdomain in problem.subdomains.items():
         plan = subdomain.plan
-        if isinstance(plan, BodyPlan):
+        if subdomain.kind == "rigid":
+            dofs[name] = 1
+        elif isinstance(plan, BodyPlan):
             dofs[name] = 4 * body_triangles(plan)
         elif isinstance(plan, CoatingPlan):
             dofs[name] = 2 * (2 * len(plan.nodes) - 1) * (2 * plan.layers + 1)

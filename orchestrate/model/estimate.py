@@ -71,9 +71,10 @@ BISECTIONS = 64                # halvings of [-60, 60] in log F: below a double'
 # ---- the contact half-width ------------------------------------------------------------
 
 def contact_modulus(scene):
-    """E* of the indenter and the base (plane strain)."""
+    """E* of the indenter and the base (plane strain; a rigid indenter adds nothing)."""
     ind, base = scene.indenter, scene.base
-    return 1.0 / ((1 - ind.nu ** 2) / ind.E + (1 - base.nu ** 2) / base.E)
+    compliance = 0.0 if ind.rigid else (1 - ind.nu ** 2) / ind.E
+    return 1.0 / (compliance + (1 - base.nu ** 2) / base.E)
 
 
 def relative_radius(scene):
@@ -99,6 +100,8 @@ def _body_depths(scene):
     """(E, nu, depth) of each body: how far below its face it is held."""
     ind, base = scene.indenter, scene.base
     depth = base.height if base.shape == "block" else base.radius - base.shaft_radius
+    if ind.rigid:
+        return ((base.E, base.nu, depth),)
     return ((ind.E, ind.nu, ind.height), (base.E, base.nu, depth))
 
 

@@ -153,6 +153,8 @@ class Indenter:
     centre: float = 0.0            # x1 of the lowest point (full models)
     E: float = 1.0
     nu: float = 0.3
+    rigid: bool = False            # a rigid indenter: no body (E, nu and height unused),
+                                   # its face pressed by the stamp as a whole
 
     def check(self, prefix):
         _require(isinstance(self.radius, (int, float)) and not isinstance(self.radius, bool)
@@ -166,6 +168,8 @@ class Indenter:
         _poisson(prefix + "nu", self.nu)
         _require(_finite(self.centre), prefix + "centre",
                  f"{prefix}centre = {self.centre!r} must be a number")
+        _require(isinstance(self.rigid, bool), prefix + "rigid",
+                 f"{prefix}rigid = {self.rigid!r} must be true or false")
         if self.profile == "circle" and math.isfinite(self.radius):
             _require(self.radius > self.width, prefix + "radius",
                      f"{prefix}radius = {self.radius!r} must exceed {prefix}width = "
@@ -430,7 +434,8 @@ class Scene:
         _require(descent is None or descent == 0 or descent >= SMALLEST_LOAD, "load.displacement",
                  f"load.displacement = {descent!r} must be 0 or at least {SMALLEST_LOAD:g} b: "
                  "smaller descents underflow")
-        moduli = {"indenter.E": self.indenter.E, "base.E": self.base.E}
+        moduli = {"base.E": self.base.E} if self.indenter.rigid else {
+            "indenter.E": self.indenter.E, "base.E": self.base.E}
         moduli.update((f"coating[{n}].E", c.E) for n, c in enumerate(self.coatings, start=1))
         for key, modulus in moduli.items():
             _require(MODULUS_RANGE[0] <= modulus <= MODULUS_RANGE[1], key,
@@ -445,10 +450,10 @@ class Scene:
 
     @property
     def modulus(self):
-        """E, the scene's unit of stress: the stiffer body's modulus. The penalty and the
-        Robin parameter are set in b/E and E/b, so that a scene behaves the same in any
-        unit of stress."""
-        return max(self.indenter.E, self.base.E)
+        """E, the scene's unit of stress: the stiffer body's modulus (the base's under a
+        rigid indenter). The penalty and the Robin parameter are set in b/E and E/b, so
+        that a scene behaves the same in any unit of stress."""
+        return self.base.E if self.indenter.rigid else max(self.indenter.E, self.base.E)
 
     # ---- derived quantities -------------------------------------------------------
     @property

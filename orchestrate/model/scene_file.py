@@ -4,7 +4,7 @@ A scene file has the tables of orchestrate/model/scene.py (docs/reference.md, "S
 
     symmetric = true
     contact_zone = [0.0, 2.0]      # optional
-    [indenter]   radius, profile, face_mesh, width, height, centre, E, nu
+    [indenter]   radius, profile, face_mesh, width, height, centre, E, nu, rigid
     [base]       shape, width, height, radius, bore, E, nu
     [[coating]]  start, end, thickness, E, nu, model, shear_factor   (any number)
     [load]       displacement or force

@@ -178,7 +178,8 @@ def scene_title(summary, scene, units):
         shape = (f"{'cylinder' if indenter.profile == 'circle' else 'parabolic indenter'} "
                  f"R = {indenter.radius:g} {length}")
     on = "block" if base.shape == "block" else f"roller R = {base.radius:g} {length}"
-    moduli = (f"E = {base.E:g} {stress}" if indenter.E == base.E
+    moduli = (f"rigid indenter, E = {base.E:g} {stress}" if indenter.rigid
+              else f"E = {base.E:g} {stress}" if indenter.E == base.E
               else f"E = {indenter.E:g} / {base.E:g} {stress}")
     if load.force is not None:
         loading = f"force {load.force:g} {units['force']}"

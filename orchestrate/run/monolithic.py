@@ -24,7 +24,9 @@ def write_problem(problem, files, path):
             else f"descent {scene.load.displacement!r}")
     lines = [f"{problem.penalty!r} {load} {len(names)} {len(problem.interfaces)}"]
     for name, subdomain in problem.subdomains.items():
-        if subdomain.kind == "body":
+        if subdomain.kind == "rigid":
+            lines.append(" ".join(["rigid", "-", files[name]["sides"]]))
+        elif subdomain.kind == "body":
             numbers = [subdomain.E, subdomain.nu]
             lines.append(" ".join(["body", files[name]["mesh"], *map(repr, numbers),
                                    files[name]["sides"]]))

@@ -236,7 +236,8 @@ def _strain_warnings(scene, results, say):
     found = []                                         # (ratio, what)
     softest_pressed = min([scene.base.E] + [c.E for c in scene.coatings])
     for extreme in _extremes(results["answers"]["contact"]):
-        found.append((extreme["value"] / min(scene.indenter.E, softest_pressed),
+        found.append((extreme["value"] / (softest_pressed if scene.indenter.rigid
+                                          else min(scene.indenter.E, softest_pressed)),
                       f"the contact pressure {say.stress(extreme['value'])}"))
     for name, values in results["answers"]["bonds"].items():
         coating = scene.coatings[int(name.rsplit("coating", 1)[1]) - 1]

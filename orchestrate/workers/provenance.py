@@ -24,7 +24,9 @@ import subprocess
 
 from orchestrate.paths import PROJECT_DIR, forms_dir
 
-WORKER_SCRIPTS = ("body.edp", "shell.edp")   # every script a run's workers run
+# The worker script of each kind of subdomain (freefem/): every script a run's workers run
+SCRIPTS = {"body": "body.edp", "shell": "shell.edp", "rigid": "rigid.edp"}
+WORKER_SCRIPTS = tuple(SCRIPTS.values())
 _INCLUDE = re.compile(r'^\s*include\s+"([^"]+)"', re.MULTILINE)
 _HASH_DIGITS = 16       # hex digits kept: 64 bits, far from any chance collision
 

@@ -22,6 +22,7 @@ from orchestrate.workers.exchange import (BodyOutput, Command, OutputRequest, Ro
 from orchestrate.mesh.meshes import coating_mesh, write_body_mesh, write_medit
 from orchestrate.mesh.body_plans import BodyPlan
 from orchestrate.workers.robin_map import check, receive_map, send_map_request
+from orchestrate.workers.provenance import SCRIPTS
 from orchestrate.workers.session import body_fingerprint, files_fingerprint
 
 
@@ -44,7 +45,9 @@ def _write_inputs(problem, workdir):
         with open(files[name]["sides"], "w") as out:
             out.write(Sides(tuple(SideArrays.of(*pair) for pair in sides)).encode())
         plan = subdomain.plan
-        if subdomain.kind == "body":
+        if subdomain.kind == "rigid":
+            files[name]["geometry"] = files_fingerprint([files[name]["sides"]])
+        elif subdomain.kind == "body":
             files[name]["mesh"] = os.path.join(workdir, f"{name}.mesh")
             if isinstance(plan, BodyPlan):
                 mesh = write_body_mesh(plan, files[name]["mesh"])
@@ -62,7 +65,9 @@ def _write_inputs(problem, workdir):
 
 
 def worker_arguments(subdomain, files):
-    """The command-line arguments of a subdomain's worker script (body.edp, shell.edp)."""
+    """The command-line arguments of a subdomain's worker script (SCRIPTS)."""
+    if subdomain.kind == "rigid":
+        return ["-sides", files["sides"]]
     if subdomain.kind == "body":
         return ["-mesh", files["mesh"], "-E", subdomain.E, "-nu", subdomain.nu,
                 "-sides", files["sides"]]
@@ -118,7 +123,7 @@ class Subdomains:
                               for i, _ in self.sides[name]] for name in problem.subdomains}
         self.specs, self.keys, self.origins = {}, {}, {}
         for name, subdomain in problem.subdomains.items():
-            script = "body.edp" if subdomain.kind == "body" else "shell.edp"
+            script = SCRIPTS[subdomain.kind]
             arguments = worker_arguments(subdomain, files[name])
             if subdomain.stamp:
                 arguments += load_arguments(problem)
@@ -294,7 +299,7 @@ class Subdomains:
         checkpoint("output")
         outputs = {}
         for name, entry in self.entries.items():
-            if self.problem.subdomains[name].kind == "body":
+            if self.problem.subdomains[name].kind in ("body", "rigid"):
                 output = entry.worker.receive(BodyOutput.decode)
                 dx, dy = self.origins[name] - entry.origin
                 output = replace(output, columns={**output.columns,

@@ -74,6 +74,14 @@ CASES = {
     "cylinder E/100 on a coated block, iterated": (
         _file("cylinder", **{"indenter.E": 0.01, "load.force": 2e-4}),
         Settings(eps_u=1e-8, inner_solve="iterate")),
+    # a rigid indenter: one unknown (freefem/subdomain_rigid.idp), its side's neighbours
+    # at gamma = 1/theta; under a force and under a descent
+    "rigid cylinder on a coated block, force": (
+        _file("cylinder", **{"indenter.rigid": True}), Settings(eps_u=1e-8)),
+    "rigid cylinder on a coated block, descent, iterated": (
+        _file("cylinder", **{"indenter.rigid": True, "load.force": None,
+                             "load.displacement": 0.02}),
+        Settings(eps_u=1e-8, inner_solve="iterate")),
 }
 
 

@@ -3,7 +3,7 @@ plans (the error a user would meet comes before any work), and together the scen
 the ranges engineers pose (issue 28): indenter over base modulus from 1e-2 to 1e3,
 coating over base from 1/100 to 100, coating thickness from 1e-3 to 10 contact
 half-widths, bodies from 4 to 50 half-widths, a roller with R/h2 up to 1e4, discrete
-patches, force and displacement loads, scenes in mm and MPa."""
+patches, a rigid indenter, force and displacement loads, scenes in mm and MPa."""
 
 import math
 
@@ -59,5 +59,6 @@ def test_the_sizes_span_what_engineers_pose(spans):
 
 def test_the_loads_units_and_patches_span_what_engineers_pose(spans):
     assert {row["load"] for row in spans} == {"force", "displacement"}
+    assert any(row["scene"].indenter.rigid for row in spans)
     assert any(row["scene"].units.length == "mm" for row in spans)
     assert any(len(row["scene"].coatings) >= 2 for row in spans)     # discrete patches
