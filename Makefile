@@ -102,6 +102,7 @@ bench: setup
 	$(PYTHON) -m studies.penalty
 	$(PYTHON) -m studies.bench_session
 	$(PYTHON) -m studies.bench_direct
+	$(PYTHON) -m studies.bench_dask
 
 # Where each method fails: a sweep of 102 runs (resumable), then its maps and charts
 # (results/stability/). Errors use the fine references of `make bench` where they exist.

@@ -49,8 +49,9 @@ def one_by_one(points, session):
     return pd.DataFrame(rows)
 
 
-def sweep_seconds(points, out):
-    """Wall seconds of a sweep like the figures' (warm starts, 2 jobs) of ``points``."""
+def sweep_seconds(points, out, engine="local"):
+    """Wall seconds of a sweep like the figures' (warm starts, 2 jobs) of ``points`` on
+    the ``engine``; its runs are in ``out``/sweep."""
     def value(v):                              # in TOML
         if isinstance(v, bool):
             return "true" if v else "false"
@@ -61,7 +62,7 @@ def sweep_seconds(points, out):
     path.write_text(f'name = "bench"\nwarm_start = true\n{runs}')
     start = time.perf_counter()
     with open(os.devnull, "w") as quiet:
-        run_sweep(path, out=Path(out) / "sweep", jobs=2, stream=quiet)
+        run_sweep(path, out=Path(out) / "sweep", engine=engine, jobs=2, stream=quiet)
     return time.perf_counter() - start
 
 

@@ -10,7 +10,8 @@ import time
 
 from orchestrate.files.folders import remove_dead_work_folders
 from orchestrate.sweeps.manifest import run_status
-from orchestrate.sweeps.point import worker_init, run_point, write_report
+from orchestrate.sweeps.point import (close_process_session, open_process_session, run_point,
+                                      worker_init, write_report)
 
 ATTEMPTS = 2           # a run whose worker process dies when alone is tried this often
 
@@ -118,16 +119,36 @@ def kill_pool(pool):
     pool.shutdown(wait=False, cancel_futures=True)
 
 
+def keep_workers_plugin():
+    """A Dask worker plugin: each Dask worker keeps a Session from run to run, as a local
+    pool's process does, so that a cluster's marginal cost per scene is a local one's
+    (the indenter's and the base's FreeFEM workers taken over where they are the same)."""
+    from distributed.diagnostics.plugin import WorkerPlugin
+
+    class KeepWorkers(WorkerPlugin):
+        name = "orchestrate-keep-workers"
+
+        def setup(self, worker):
+            open_process_session()
+
+        def teardown(self, worker):
+            close_process_session()
+
+    return KeepWorkers()
+
+
 def run_dask(pending, sweep_dir, scene_dir, jobs, progress, scheduler=None, retry_failed=False,
              neighbours=None, run_done=lambda name=None: None, sweep_id=None):
-    """Dask distributed: a local cluster of ``jobs`` workers, or a scheduler's. A task
-    whose workers keep dying (Dask retries it) is recorded as failed."""
+    """Dask distributed: a local cluster of ``jobs`` workers, or a scheduler's, each
+    keeping its FreeFEM workers from run to run (keep_workers_plugin). A task whose
+    workers keep dying (Dask retries it) is recorded as failed."""
     from dask.distributed import Client, LocalCluster, as_completed
     from distributed import KilledWorker
 
     cluster = None if scheduler else LocalCluster(
         n_workers=jobs, threads_per_worker=1, processes=True, dashboard_address=None)
     client = Client(scheduler or cluster)
+    client.register_plugin(keep_workers_plugin())
     try:
         futures = {client.submit(run_point, name, values, str(sweep_dir), str(scene_dir),
                                  retry_failed, neighbours, sweep_id, pure=False): name

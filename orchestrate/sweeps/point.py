@@ -1,5 +1,6 @@
 """One point of a sweep, solved in an engine's worker process into its run folder (the
-process keeps its FreeFEM workers from run to run: a Session)."""
+process keeps its FreeFEM workers from run to run: a Session, opened by worker_init in a
+local pool's process and by the KeepWorkers plugin in a Dask worker's)."""
 
 from pathlib import Path
 
@@ -77,9 +78,27 @@ def write_report(folder, report):
         run.commit()
 
 
-# A local engine's worker process keeps the FreeFEM workers of its last run for the next
-# (orchestrate/workers/session.py); elsewhere (a direct call, Dask) each run has its own.
+# An engine's worker process keeps the FreeFEM workers of its last run for the next
+# (orchestrate/workers/session.py); elsewhere (a direct call) each run has its own.
 _process_session = None
+
+
+def open_process_session():
+    """The Session this process's runs share (one run at a time: its lock)."""
+    from orchestrate.workers.session import Session
+
+    global _process_session
+    if _process_session is None:
+        _process_session = Session()
+    return _process_session
+
+
+def close_process_session():
+    """Stop the process's FreeFEM workers."""
+    global _process_session
+    if _process_session is not None:
+        _process_session.close()
+        _process_session = None
 
 
 def worker_init(driver):
@@ -87,10 +106,8 @@ def worker_init(driver):
     and keep a Session, closed when the process ends."""
     from multiprocessing.util import Finalize
 
-    from orchestrate.workers.session import Session
     from orchestrate.workers.worker import die_with_parent
 
-    global _process_session
     die_with_parent(driver)
-    _process_session = Session()
-    Finalize(_process_session, _process_session.close, exitpriority=10)
+    Finalize(None, close_process_session, exitpriority=10)
+    open_process_session()

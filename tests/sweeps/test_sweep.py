@@ -108,16 +108,24 @@ def test_an_auto_run_is_a_row_with_the_model_chosen_and_its_estimate(uninterrupt
     assert 0 <= auto.model_error_estimate.iloc[0] <= 0.01
 
 
-def test_a_local_sweep_s_runs_take_over_the_workers_of_the_run_before(uninterrupted):
-    """Each worker process keeps its last run's workers (orchestrate/workers/session.py): the
-    points share the indenter (shifted) and the base, so every run after a process's
-    first takes those over. Their answers are those of runs alone: the Dask engine runs
-    each alone, and its table is this one (test_the_dask_engine_runs_the_same_sweep)."""
-    _, out = uninterrupted
+def _runs_that_kept_the_bodies(out):
     kept = [json.loads(path.read_text()).get("workers_kept")
             for path in (out / "runs").glob("*/summary.json")]
     assert len(kept) == RUNS
-    assert sum("indenter" in (names or []) and "base" in names for names in kept) >= RUNS - 4
+    return sum("indenter" in (names or []) and "base" in names for names in kept)
+
+
+def test_a_local_sweep_s_runs_take_over_the_workers_of_the_run_before(uninterrupted):
+    """Each worker process keeps its last run's workers (orchestrate/workers/session.py): the
+    points share the indenter (shifted) and the base, so every run after a process's
+    first takes those over. Their answers are those of runs alone (the table of the Dask
+    engine's sweep, whose workers keep theirs too, is this one)."""
+    assert _runs_that_kept_the_bodies(uninterrupted[1]) >= RUNS - 4
+
+
+def test_a_dask_sweep_s_runs_take_over_the_workers_of_the_run_before(dask_sweep):
+    """A Dask worker keeps a Session too (engines.keep_workers_plugin)."""
+    assert _runs_that_kept_the_bodies(dask_sweep[1]) >= RUNS - 4
 
 
 def test_a_finished_sweep_is_not_run_again(sweep_file, uninterrupted):
@@ -168,11 +176,17 @@ def test_an_interrupted_sweep_resumes_with_the_missing_runs_only(sweep_file, uni
     _same_table(pd.read_csv(out / "runs.csv"), pd.read_csv(uninterrupted[1] / "runs.csv"))
 
 
-def test_the_dask_engine_runs_the_same_sweep(sweep_file, uninterrupted, tmp_path):
+@pytest.fixture(scope="module")
+def dask_sweep(sweep_file, tmp_path_factory):
+    out = tmp_path_factory.mktemp("dask") / "dask"
     said = io.StringIO()
-    table = run_sweep(sweep_file, tmp_path / "dask", engine="dask", jobs=2, stream=said)
+    return run_sweep(sweep_file, out, engine="dask", jobs=2, stream=said), out, said
+
+
+def test_the_dask_engine_runs_the_same_sweep(dask_sweep, uninterrupted):
+    table, out, said = dask_sweep
     _same_table(table, uninterrupted[0])
-    assert processes_mentioning(str(tmp_path / "dask")) == []
+    assert processes_mentioning(str(out)) == []      # its workers' FreeFEM workers stopped
     last = said.getvalue().strip().splitlines()[-1]          # the progress at the end
     assert last.startswith(f"{RUNS}/{RUNS} done, 0 running"), last
 
