@@ -26,8 +26,7 @@ import os
 import pandas as pd
 
 import orchestrate
-from orchestrate.model import Settings
-from orchestrate.model.scene_file import apply_overrides
+from orchestrate.model import Settings, apply_overrides
 from studies.paths import RESULTS_DIR
 from studies.report import Column, Report, command_line, fraction_of_b, signed_percent
 

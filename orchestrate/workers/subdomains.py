@@ -292,11 +292,13 @@ class Subdomains:
             entry = self.entries[name]
             reply = entry.worker.receive(TraceReply.decode, self.shapes[name])
             check(entry.worker.name, entry.robin_map, self.last_requests[name], reply)
+        # before the requests: a worker that dies here has not answered (after them, a
+        # small worker's reply may already sit whole in its FIFO)
+        checkpoint("output")
         for name, entry in self.entries.items():
             subdomain = self.problem.subdomains[name]
             fields = subdomain.coating or self.problem.settings.body_fields
             entry.worker.send(Command.OUTPUT, OutputRequest(fields))
-        checkpoint("output")
         outputs = {}
         for name, entry in self.entries.items():
             if self.problem.subdomains[name].kind in ("body", "rigid"):
