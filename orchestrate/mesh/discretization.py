@@ -39,7 +39,7 @@ import math
 import numpy as np
 
 from orchestrate.mesh.body_plans import base_plan, indenter_plan
-from orchestrate.model.estimate import contact_half_width
+from orchestrate.model.estimate import predicted_half_width
 from orchestrate.model.geometry import IndenterFace, base_face, lowest_point
 from orchestrate.model.scene import MODELS, SHELL_MODELS, ParameterError
 
@@ -248,13 +248,13 @@ def face_spacing(scene, settings, face):
     """The FaceSpacing of a scene's interfaces at the settings' mesh level (sized to its
     contact first where element_size is not given)."""
     if settings.element_size is None:
-        settings = settings.sized_to(contact_half_width(scene))
+        settings = settings.sized_to(predicted_half_width(scene))
     level = settings.mesh_level
     fine = settings.element_size / level
     far = (settings.element_size_far or settings.element_size) / level
     if far <= fine:
         return settings, FaceSpacing(fine, fine)
-    a = float(f"{contact_half_width(scene):.12g}")       # as Settings.sized_to does
+    a = float(f"{predicted_half_width(scene):.12g}")     # as Settings.sized_to does
     centre = face.s_of_x1(0.0 if scene.symmetric or scene.mirror_symmetric
                           else scene.indenter.centre)
     return settings, FaceSpacing(fine, far, centre, FINE_REACH * a)

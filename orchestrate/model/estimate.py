@@ -138,6 +138,35 @@ def contact_half_width(scene):
     return min(_hertz_half_width(force, radius, contact_modulus(scene)), face)
 
 
+def predicted_half_width(scene, a=None):
+    """The contact half-width the mesh and the first contact set are sized to: the
+    bodies' estimate ``a`` (contact_half_width, the model estimate's variable) or, under
+    a force, that of the coating patch under the contact's centre, whichever is wider:
+    pressed as a thin layer alone (Winkler: p = M (delta - x^2 / 2R) / h2, so
+    F = 2 M a^3 / (3 R h2), M its constrained modulus) where it is thinner than that
+    contact, else as a half-space of its own modulus under the indenter (Hertz). A
+    compliant coating spreads the contact well beyond the bodies' estimate (a polymer
+    film on steel: four times); a stiff one leaves the bodies' estimate."""
+    a = contact_half_width(scene) if a is None else a
+    force = scene.load.force
+    if not force:
+        return a
+    centre = 0.0 if scene.symmetric or scene.mirror_symmetric else scene.indenter.centre
+    under = [c for c in scene.coatings if c.start <= centre <= c.end]
+    radius = relative_radius(scene)
+    if not under or math.isinf(radius):
+        return a
+    coating = under[0]
+    layer = (1.5 * force * radius * coating.thickness
+             / constrained_modulus(coating.E, coating.nu)) ** (1.0 / 3.0)
+    if coating.thickness >= layer:          # thick: the coating is the half-space
+        indenter = scene.indenter
+        compliance = 0.0 if indenter.rigid else (1 - indenter.nu ** 2) / indenter.E
+        layer = _hertz_half_width(force, radius,
+                                  1.0 / (compliance + (1 - coating.nu ** 2) / coating.E))
+    return min(max(a, layer), max(a, _face_half_width(scene)))
+
+
 # ---- the estimate ----------------------------------------------------------------------
 
 def constrained_modulus(E, nu):

@@ -20,6 +20,7 @@ from orchestrate.ddm.strategy import plan_strategy
 from orchestrate.mesh.discretization import discretize
 from orchestrate.mesh.problem_size import check_size, estimated_dofs
 from orchestrate.model.estimate import (contact_half_width, estimated_errors, not_estimated,
+                                        predicted_half_width,
                                         worst_error)
 from orchestrate.model.scene import check_compatible
 from orchestrate.model.units import dimensionless
@@ -86,16 +87,17 @@ def prepare(scene, settings):
     check_compatible(scene, settings)
     solved, scales = dimensionless(scene)
     a = contact_half_width(solved)           # the a priori estimate, made once
-    settings = settings.sized_to(a)          # the mesh sized to the contact
+    predicted = predicted_half_width(solved, a)     # with a compliant coating's spread
+    settings = settings.sized_to(predicted)  # the mesh sized to the contact
     solved, model_choice = choose_models(solved, settings, a)
     problem = discretize(solved, settings)
     check_size(problem)
     coarse = discretize(solved, coarse_settings(settings)) if settings.two_levels else None
-    strategy = plan_strategy(settings, problem, coarse, a)
+    strategy = plan_strategy(settings, problem, coarse, predicted)
     chosen = scene.with_models([c.model for c in solved.coatings])
     say = Say(scales, scene.units)
     return Plan(chosen, problem, model_choice, scales,
                 tuple(scene_warnings(chosen, scene, settings, say, a * scales.length)
-                      + mesh_warnings(problem, say, a)),
+                      + mesh_warnings(problem, say, predicted)),
                 strategy, coarse if strategy.two_levels else None)
 

@@ -103,3 +103,24 @@ def test_the_bodies_meshes_have_the_graded_faces_vertices(tin):
         # graded: far fewer triangles than a uniform mesh of the finest elements
         assert len(mesh.cells_dict["triangle"]) < 20000
         assert math.isfinite(mesh.points.max())
+
+
+@pytest.mark.slow
+def test_a_compliant_coating_widens_the_predicted_contact():
+    """A polymer film a hundredth of steel's modulus, about as thick as the bodies'
+    contact is wide: pressed as a thin layer (Winkler) its contact is four times the
+    bodies' Hertz estimate, and the solved one within 2 % of that; a stiff thin coating
+    (TiN on steel) leaves the bodies' estimate."""
+    from orchestrate.model.estimate import predicted_half_width
+    scene, settings = scene_and_settings(SCENES_DIR / "gallery" / "polymer_coating_on_steel.toml")
+    plan = prepare(scene, settings)
+    solved = plan.problem.scene
+    a, predicted = contact_half_width(solved), predicted_half_width(solved)
+    assert predicted > 3.5 * a
+    assert plan.strategy.first_contact == pytest.approx(predicted)
+    import orchestrate
+    run = orchestrate.solve(scene).summary
+    assert run["contact_half_width"] / plan.scales.length == pytest.approx(predicted, rel=0.02)
+    assert 16 <= run["elements_across_contact"][0] <= 2 * 32      # sized to it
+    tin = prepare(*scene_and_settings(TIN)).problem.scene
+    assert predicted_half_width(tin) == contact_half_width(tin)
