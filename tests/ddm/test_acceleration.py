@@ -73,3 +73,40 @@ def test_the_answer_does_not_depend_on_the_loop(tmp_path):
     (paper_iterations, paper), (accelerated_iterations, accelerated) = answers.values()
     assert np.max(np.abs(paper - accelerated)) < 1e-6 * np.max(np.abs(paper))
     assert accelerated_iterations < paper_iterations / 3
+
+
+def test_the_updated_qr_steps_as_a_new_factorisation_would():
+    """The history's QR kept by rotations (qr_update.py) gives the iterates that a QR
+    factorised anew at every step gives, with a full history and one that drops its
+    oldest column (memory 20), to rounding."""
+    n = 120
+    G, fixed_point = _affine_map(np.linspace(-0.9, 0.999, n), seed=1)
+    for memory in (200, 20):
+        updated, anew = Anderson(np.ones(n), memory=memory), Anderson(np.ones(n), memory=memory)
+
+        def step_anew(x, g):
+            r = anew.record(x, g)
+            if len(anew._residuals) == 1:
+                return x + anew.first_relaxation * (g - x)
+            d_residuals = np.diff(np.array(anew._residuals), axis=0).T
+            d_images = np.diff(np.array(anew._images), axis=0).T
+            order, q, upper = anew._filtered_qr(d_residuals)
+            return g - d_images[:, order] @ np.linalg.solve(upper, q.T @ r)
+        x = y = np.zeros(n)
+        for _ in range(100):
+            x, y = updated.step(x, G(x)), step_anew(y, G(y))
+            assert np.linalg.norm(x - y) <= 1e-10 * np.linalg.norm(y)
+
+
+def test_qr_updates_are_factorisations():
+    from orchestrate.ddm.qr_update import delete_column, prepend_column
+    rng = np.random.default_rng(2)
+    a = rng.standard_normal((50, 6))
+    q, r = np.linalg.qr(a[:, 1:])
+    q, r = prepend_column(q, r, a[:, 0])
+    assert np.allclose(q @ r, a, atol=1e-12) and np.allclose(q.T @ q, np.eye(6), atol=1e-12)
+    assert np.allclose(np.tril(r, -1), 0.0)
+    q, r = delete_column(q, r, 2)
+    assert np.allclose(q @ r, np.delete(a, 2, axis=1), atol=1e-12)
+    assert np.allclose(q.T @ q, np.eye(5), atol=1e-12) and np.allclose(np.tril(r, -1), 0.0)
+    assert prepend_column(q, r, a[:, 1] + a[:, 3]) is None       # in the span: anew
