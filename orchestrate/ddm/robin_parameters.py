@@ -45,6 +45,14 @@ class SideParameter:
     hold_inactive: bool
 
 
+def releases_any(problem, rule, hold_contrast):
+    """Whether some side releases its inactive points (a neighbour more than
+    hold_contrast times as stiff): a coarse level, whose maps need every side held,
+    cannot model that loop, and holding them all crawls under the contrast."""
+    return not all(side.hold_inactive
+                   for side in side_parameters(problem, problem.robin, rule, hold_contrast))
+
+
 def plane_strain_modulus(subdomain):
     """E* = E / (1 - nu^2): the stiffness of the body's face per wavenumber, times 2."""
     return subdomain.E / (1.0 - subdomain.nu ** 2)

@@ -164,14 +164,15 @@ class Strategy:
         return record
 
 
-def plan_strategy(settings, problem, coarse=None, half_width=None):
+def plan_strategy(settings, problem, coarse=None, half_width=None, contrast=False):
     """The Strategy of ``problem`` (a run's discrete problem, in b and E) under
     ``settings``; ``coarse``: the coarse level's problem where two levels are asked
     (Settings.two_levels), else None; ``half_width``: the a priori contact half-width
-    (b), if known."""
+    (b), if known; ``contrast``: auto left out the coarse level its mesh level would
+    take, for a side releases its inactive points (run/plan.py)."""
     paper = settings.method == PAPER
     theta, default_rule = settings.default_theta()
-    inner_solve = _inner_solve(settings, problem, coarse)
+    inner_solve = _inner_solve(settings, problem, coarse, contrast)
     gamma, gamma_rule = settings.robin_choice()
     return Strategy(
         loop=settings.method,
@@ -194,7 +195,7 @@ def plan_strategy(settings, problem, coarse=None, half_width=None):
                        and not paper else None))
 
 
-def _inner_solve(settings, problem, coarse):
+def _inner_solve(settings, problem, coarse, contrast=False):
     """The InnerSolve the settings ask of the active-set loop, where the scene allows it
     (two levels need interfaces that pair up with the coarse level's)."""
     asked = settings.inner_solve
@@ -214,8 +215,12 @@ def _inner_solve(settings, problem, coarse):
     if settings.workers == "fresh":
         return InnerSolve(asked, ITERATE, "auto with a fresh process per solve, which keeps "
                           "no factorisation to probe a map with", None, ITERATE)
+    without_coarse = ("no coarse level (a side releases its inactive points under a "
+                      f"neighbour more than hold_contrast {settings.hold_contrast:g} times as "
+                      "stiff, which the coarse level's fixed maps cannot model); "
+                      if contrast else "")
     return InnerSolve(asked, DIRECT_OR_ITERATE,
-                      f"auto: direct where every new worker's interface unknowns, weighted by "
+                      f"auto: {without_coarse}direct where every new worker's interface unknowns, weighted by "
                       f"its dofs over the largest worker's, are at most auto_direct_unknowns "
                       f"{settings.auto_direct_unknowns}, else iterate; decided once the "
                       "workers started", fallback)

@@ -11,18 +11,26 @@ mesh. Costs within COST_TIE of the cheapest count as the same, and then the more
 faithful model wins: on the paper's mesh the 2D coating needs no more unknowns than a
 shell until it must refine (thinner than about b/32), and a run's time follows its
 unknowns (docs/findings.md, "Speed and accuracy").
+
+On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse level out
+where a side releases its inactive points (a neighbour more than hold_contrast times as
+stiff, ddm/robin_parameters.py): the coarse level models the loop with every side held,
+which crawls under such a contrast (the near-rigid cylinder at mesh level 2: two levels
+stagnated and fell back to the direct solve in 57 s; iterated with the sides released,
+85 iterations and 7.5 s).
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from orchestrate.ddm.coarse import coarse_settings
+from orchestrate.ddm.robin_parameters import releases_any
 from orchestrate.ddm.strategy import plan_strategy
 from orchestrate.mesh.discretization import discretize
 from orchestrate.mesh.problem_size import check_size, estimated_dofs
 from orchestrate.model.estimate import (contact_half_width, estimated_errors, not_estimated,
                                         predicted_half_width,
                                         worst_error)
-from orchestrate.model.scene import check_compatible
+from orchestrate.model.scene import MESH_LEVEL_LIMIT, check_compatible
 from orchestrate.model.units import dimensionless
 from orchestrate.run.validity import Say, mesh_warnings, scene_warnings
 
@@ -91,9 +99,15 @@ def prepare(scene, settings):
     settings = settings.sized_to(predicted)  # the mesh sized to the contact
     solved, model_choice = choose_models(solved, settings, a)
     problem = discretize(solved, settings)
+    contrast = (settings.inner_solve == AUTO and settings.two_levels
+                and releases_any(problem, settings.robin_sides, settings.hold_contrast))
+    if contrast:       # a coarse level would hold every side: one level, its gamma
+        settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
+        problem = replace(problem, settings=settings,
+                          robin=settings.robin_parameter * solved.modulus)
     check_size(problem)
     coarse = discretize(solved, coarse_settings(settings)) if settings.two_levels else None
-    strategy = plan_strategy(settings, problem, coarse, predicted)
+    strategy = plan_strategy(settings, problem, coarse, predicted, contrast)
     chosen = scene.with_models([c.model for c in solved.coatings])
     say = Say(scales, scene.units)
     return Plan(chosen, problem, model_choice, scales,

@@ -196,13 +196,20 @@ def test_two_levels_the_settings_cannot_give_are_refused():
 
 def test_auto_falls_back_to_the_direct_solve_where_two_levels_stall(tmp_path):
     """A base a thousand times stiffer than the indenter and the 2D coating, at mesh
-    level 2: auto iterates with two levels, which stalls (the iterates stop changing
-    above the tolerance the estimate needs); it falls back to solving each contact set
-    directly, says so in the summary, and reaches the direct solve's answer."""
+    level 2, every side held (hold_contrast 1e12): auto iterates with two levels, which
+    stalls (the iterates stop changing above the tolerance the estimate needs); it falls
+    back to solving each contact set directly, says so in the summary, and reaches the
+    direct solve's answer. At the default hold_contrast the indenter's side releases its
+    inactive points, and auto iterates on one level: no fallback, the same answer."""
     scene = paper_scene(model="elastic", E3=1000.0)
-    auto = solve(scene, Settings(mesh_level=2), str(tmp_path / "auto"))
+    auto = solve(scene, Settings(mesh_level=2, hold_contrast=1e12), str(tmp_path / "auto"))
     direct = solve(scene, Settings(mesh_level=2, inner_solve="direct"),
                    str(tmp_path / "direct"))
+    one_level = solve(scene, Settings(mesh_level=2), str(tmp_path / "one_level"))
+    assert one_level["inner_solve_fallback"] is None
+    assert one_level["inner_solve_used"] in ("iterate", "direct")
+    for key in ("peak_contact_stress", "peak_interface_stress", "total_force"):
+        assert one_level[key] == pytest.approx(direct[key], rel=EPS_U), key
     fallback = auto["inner_solve_fallback"]
     assert fallback["inner_solve"] == "two-level" and fallback["status"] == "stagnated"
     assert auto["inner_solve_used"] == "two-level (stagnated), then direct"

@@ -442,3 +442,20 @@ def test_under_a_force_the_first_contact_set_is_the_predicted_one():
     touched = first_contact_set(plan.problem.scene, layout, layout.zeros())
     assert touched.sum() == 1
     assert prepare(paper_scene(), Settings()).strategy.first_contact is None
+
+
+def test_auto_leaves_the_coarse_level_out_under_contrast():
+    """At mesh level 2 auto takes two levels, which hold every side; where a side
+    releases its inactive points (the near-rigid cylinder: its base's side under a
+    neighbour 1000 times as stiff) it iterates on one level with its gamma instead."""
+    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
+    plan = prepare(scene, Settings(mesh_level=2))
+    assert plan.strategy.inner_solve.planned == DIRECT_OR_ITERATE
+    assert "no coarse level" in plan.strategy.inner_solve.rule
+    assert plan.strategy.gamma.value == Settings().robin_one_level and plan.coarse is None
+    assert not plan.problem.settings.two_levels
+    assert any(not side.hold_inactive for side in plan.strategy.sides)
+    equal = prepare(paper_scene(), Settings(mesh_level=2)).strategy
+    assert equal.inner_solve.planned == TWO_LEVEL
+    asked = prepare(scene, Settings(mesh_level=2, inner_solve="two-level")).strategy
+    assert asked.inner_solve.planned == TWO_LEVEL          # asked, it is kept
