@@ -118,15 +118,6 @@ class Anderson:
             step += coefficient * (images[-1 - k] - images[-2 - k])
         return g - step
 
-    def _filtered_qr(self, columns):
-        """(the kept columns' indices, newest first, dropping the oldest dependent ones;
-        Q; R of their QR in that order) of ``columns``, the newest last, factorised anew
-        (the filter the updated QR of ``step`` goes through)."""
-        ordered = columns[:, ::-1]
-        q, upper = np.linalg.qr(ordered)
-        order, q, upper = self._filtered(q, upper, list(np.linalg.norm(ordered, axis=0)))
-        return [columns.shape[1] - 1 - k for k in order], q, upper
-
     def _filtered(self, q, upper, norms):
         """(the kept columns' positions, newest (0) first; Q; R of their QR): the oldest
         dependent columns dropped, one at a time from the QR of the newest-first history,

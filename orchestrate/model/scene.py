@@ -55,6 +55,9 @@ ELEMENT_SIZE_RANGE = (1e-4, None)   # b: the interface elements at mesh level 1
 # b: the interface elements' length at mesh level 1 where the contact is wider than
 # CONTACT_ELEMENTS of them (the paper's 32 on its coating of length 2), and away from it
 DEFAULT_ELEMENT_SIZE = 0.0625
+# A contact set's update tolerance (active_set_tolerance, predicted_set_tolerance)
+SET_TOLERANCE_RANGE = (1e-12, 1.0, "relative change", "below eps_u it is eps_u; above 1 "
+                       "the iterates say nothing of the contact set")
 # The strategy's knobs (Settings, from theta_per_length on): each one's range, inclusive,
 # its unit and why beyond it the knob no longer does what it is for. An integer knob is
 # one whose default is an integer.
@@ -74,10 +77,8 @@ KNOB_RANGES = {
                              "maps outgrows any machine"),
     "auto_two_level_mesh_level": (1, MESH_LEVEL_LIMIT + 1, "mesh level", "1: two levels on "
                                   "every mesh; above mesh_level's limit: never"),
-    "active_set_tolerance": (1e-12, 1.0, "relative change", "below eps_u it is eps_u; "
-                             "above 1 the iterates say nothing of the contact set"),
-    "predicted_set_tolerance": (1e-12, 1.0, "relative change", "below eps_u it is eps_u; "
-                                "above 1 the iterates say nothing of the contact set"),
+    "active_set_tolerance": SET_TOLERANCE_RANGE,
+    "predicted_set_tolerance": SET_TOLERANCE_RANGE,
     "estimate_margin": (1.0, 1e3, "factor", "below 1 the estimate drops under the error "
                         "the iterates show; far above, runs iterate for nothing"),
     "min_secants": (1, 1000, "pairs of iterates", "without a pair there is no "

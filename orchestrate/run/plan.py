@@ -103,8 +103,7 @@ def prepare(scene, settings):
                 and releases_any(problem, settings.robin_sides, settings.hold_contrast))
     if contrast:       # a coarse level would hold every side: one level, its gamma
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
-        problem = replace(problem, settings=settings,
-                          robin=settings.robin_parameter * solved.modulus)
+        problem = discretize(solved, settings)
     check_size(problem)
     coarse = discretize(solved, coarse_settings(settings)) if settings.two_levels else None
     strategy = plan_strategy(settings, problem, coarse, predicted, contrast)

@@ -55,7 +55,16 @@ def test_dependent_history_is_filtered():
     for _ in range(4):                      # the same pair again and again
         result = anderson.step(x, g)
         assert np.all(np.isfinite(result))
-    assert len(anderson._filtered_qr(np.array([[1.0, 2.0], [1.0, 2.0], [0.0, 0.0]]))[0]) == 1
+    assert len(_filtered_anew(anderson, np.array([[1.0, 2.0], [1.0, 2.0], [0.0, 0.0]]))[0]) == 1
+
+
+def _filtered_anew(anderson, columns):
+    """The filter on a QR of ``columns`` (the newest last) factorised anew: (the kept
+    columns' indices, Q, R)."""
+    ordered = columns[:, ::-1]
+    q, upper = np.linalg.qr(ordered)
+    order, q, upper = anderson._filtered(q, upper, list(np.linalg.norm(ordered, axis=0)))
+    return [columns.shape[1] - 1 - k for k in order], q, upper
 
 
 def test_the_answer_does_not_depend_on_the_loop(tmp_path):
@@ -90,7 +99,7 @@ def test_the_updated_qr_steps_as_a_new_factorisation_would():
                 return x + anew.first_relaxation * (g - x)
             d_residuals = np.diff(np.array(anew._residuals), axis=0).T
             d_images = np.diff(np.array(anew._images), axis=0).T
-            order, q, upper = anew._filtered_qr(d_residuals)
+            order, q, upper = _filtered_anew(anew, d_residuals)
             return g - d_images[:, order] @ np.linalg.solve(upper, q.T @ r)
         x = y = np.zeros(n)
         for _ in range(100):
