@@ -9,6 +9,7 @@
 #   make adequacy   where each coating model is adequate, and model = "auto" checked
 #                   on 36 held-out scenes (results/adequacy/)
 #   make gallery    the engineers' scenes against the monolithic solve (results/gallery.md)
+#   make iterations iterations per contact set against the mesh level (results/iterations.md)
 # Both install what they need first (FreeFEM from Debian, a pinned Python venv). Every
 # study writes a report beside its tables (results/*.md: what it measured, computed).
 
@@ -16,7 +17,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -115,6 +116,11 @@ stability: setup
 # and the answers' distance from the monolithic ones (results/gallery.csv, gallery.md).
 gallery: setup
 	$(PYTHON) -m studies.gallery
+
+# Iterations per contact set of the gallery's scenes at mesh levels 1-3, the coatings
+# inside the base's worker and exchanged across their bonds (results/iterations.md)
+iterations: setup
+	$(PYTHON) -m studies.iterations
 
 # The model error of each coating model over h2/a x E2/E (the paper's scene) and the
 # automatic choice on held-out scenes (about 40 minutes; finished scenes are kept in

@@ -24,8 +24,8 @@ from orchestrate.errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT
                      EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure,
                      WarnedBeforeWork)
 from orchestrate.workers.freefem import FreeFemMissing
-from orchestrate.model.scene import (INNER_SOLVES, KNOB_RANGES, METHODS, MODEL_CHOICES,
-                                     ROBIN_SIDES, WORKERS, Settings)
+from orchestrate.model.scene import (BONDS, INNER_SOLVES, KNOB_RANGES, METHODS,
+                                     MODEL_CHOICES, ROBIN_SIDES, WORKERS, Settings)
 from orchestrate.model.scene_file import SETTINGS_LENGTHS, SHORTHANDS, scene_and_settings
 
 EXIT_STATUSES = """exit status:
@@ -53,6 +53,9 @@ _SETTINGS_HELP = {
              "element length",
     "robin_sides": "each interface side's gamma: neighbour (gamma times the neighbour's "
                    "plane-strain modulus over the stiffer body's) or equal",
+    "bonds": "the active-set loop on one level: the base and its coatings solved by one "
+             "worker, their bonds inside it (where the loop iterates and every patch is "
+             "thinner than the contact), or every coating exchanged across its bond",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
     "L divides every mesh size by L",
@@ -75,8 +78,8 @@ _SETTINGS_HELP = {
     "theta_per_length": "the default theta per b of interface element (1/E)",
     "robin_one_level": "the active-set loop's default gamma on one level (E/b)",
     "robin_two_level_per_length": "with two levels, the default gamma times element_size (E)",
-    "hold_contrast": "a side holds its inactive contact points (a fixed matrix) unless its "
-                     "neighbour is more than this many times as stiff as its body",
+    "hold_contrast": "a side holds its inactive contact points (a fixed matrix) only where "
+                     "its body is at least this many times as stiff as its neighbour",
     "auto_direct_unknowns": "auto solves directly while every new worker has at most this "
                             "many interface unknowns, weighted by its dofs over the largest "
                             "worker's",
@@ -107,7 +110,7 @@ _SETTINGS_HELP = {
     "coarse_newton_steps": "Newton steps of the coarse contact problem at most",
 }
 _CHOICES = {"model": MODEL_CHOICES, "method": METHODS, "inner_solve": INNER_SOLVES,
-            "workers": WORKERS, "robin_sides": ROBIN_SIDES}
+            "workers": WORKERS, "robin_sides": ROBIN_SIDES, "bonds": BONDS}
 
 
 def _option(name):

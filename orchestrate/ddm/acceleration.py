@@ -23,12 +23,16 @@ from orchestrate.model.scene import Settings
 
 class Anderson:
     """``memory``, ``filter_tolerance``, ``first_relaxation``: by default the settings'
-    anderson_depth, anderson_filter and anderson_first_relaxation."""
+    anderson_depth, anderson_filter and anderson_first_relaxation. ``measure``: the
+    weights the parts' steps are measured in (amplification), by default ``scale``; an
+    entry the residual leaves out (scale 0: a value the map derives, not iterates on)
+    is measured by its image's step."""
 
     def __init__(self, scale, memory=Settings.anderson_depth,
                  filter_tolerance=Settings.anderson_filter,
-                 first_relaxation=Settings.anderson_first_relaxation, parts=()):
+                 first_relaxation=Settings.anderson_first_relaxation, parts=(), measure=None):
         self.scale = scale                  # weights making the residual norm meaningful
+        self.measure = scale if measure is None else measure
         self.memory = memory
         self.filter_tolerance = filter_tolerance
         self.first_relaxation = first_relaxation
@@ -56,7 +60,7 @@ class Anderson:
     def _pair_ratios(self):
         """||dx_part|| / ||dr|| of the newest pair of the history."""
         d_r = self._residuals[-1] - self._residuals[-2]
-        d_x = (self._images[-1] - self._images[-2]) * self.scale - d_r   # scaled x = g - r
+        d_x = (self._images[-1] - self._images[-2]) * self.measure - d_r   # scaled x = g - r
         d_r_norm = max(float(np.linalg.norm(d_r)), 1e-300)
         parts = self.parts or (slice(None),)
         return np.array([np.linalg.norm(d_x[part]) for part in parts]) / d_r_norm

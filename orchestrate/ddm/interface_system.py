@@ -23,11 +23,14 @@ import numpy as np
 class InterfaceSystem:
     """The frozen-set system of a run's subdomain maps.
 
-    ``layout``: the run's StateLayout; ``sides``: {subdomain: [(interface, side), ...]}
-    in request order; ``maps``: {subdomain: RobinMap} at the laws' coefficients alpha."""
+    ``layout``: the run's StateLayout; ``sides``: {worker: [(interface, side), ...]}
+    in request order; ``maps``: {worker: RobinMap} at the laws' coefficients alpha;
+    ``finish``: what makes a state of S g + s0 whole (the tractions of the bonds inside a
+    worker, robin.with_bond_tractions), or None."""
 
-    def __init__(self, layout, sides, maps):
+    def __init__(self, layout, sides, maps, finish=None):
         self.layout = layout
+        self.finish = finish or (lambda state: state)
         self.size = size = int(np.count_nonzero(layout.displacement_mask))
         self.matrix, self.constant = np.zeros((size, size)), np.zeros(size)
         for name, robin_map in maps.items():
@@ -92,7 +95,7 @@ class InterfaceSystem:
         right = self._times_laws(coefficients, s0) + h
         g = np.linalg.solve(system, right)
         correction = np.linalg.solve(system, right - system @ g)
-        return S @ g + s0, S @ (g + correction) + s0
+        return self.finish(S @ g + s0), self.finish(S @ (g + correction) + s0)
 
 
 def _entries(where):

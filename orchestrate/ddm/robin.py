@@ -71,12 +71,15 @@ class RobinLaw:
         return np.atleast_2d(g)
 
 
-def robin_laws(problem, layout, psi, theta, sides, direct=False):
+def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=()):
     """The Robin law of every side of every interface for the contact set Psi
     (concatenated over the contact interfaces): ``{(i, side): RobinLaw}``. ``sides``:
     every side's Robin parameter gamma and whether it holds its inactive points, in
     interface order, sides A then B (robin_parameters.side_parameters); ``direct``: every
-    side holds them (a solve from the subdomains' maps needs fixed matrices).
+    side holds them (a solve from the subdomains' maps needs fixed matrices); ``inside``:
+    the bonds inside a worker (Strategy.bonds_inside), which take no Robin term (alpha =
+    0: their penalty is in the worker's matrix) and whose tractions follow from the
+    traces (with_bond_tractions).
 
     Interface laws (16): on a contact where Psi = 1, t = (d - u_A - u_B)/theta on both
     sides (normal tractions, compression negative), elsewhere t = 0; on a bond the
@@ -107,7 +110,9 @@ def robin_laws(problem, layout, psi, theta, sides, direct=False):
             parameter = sides[2 * i + side]
             gamma = parameter.gamma
             c = 1.0 - gamma * theta
-            if interface.kind == "contact":
+            if i in inside:
+                law = RobinLaw(zeros, zeros, zeros, zeros, np.zeros((2, n)))
+            elif interface.kind == "contact":
                 active = psi_of[i] > 0
                 if parameter.hold_inactive or direct:
                     law = RobinLaw(np.full(n, gamma), np.where(active, 0.0, 1.0),
@@ -145,6 +150,18 @@ def state_after_solve(layout, data, traces, before):
         u = traces[i, side]
         x[layout.slices["u", i, side]] = np.ravel(u)
         x[layout.slices["t", i, side]] = np.ravel(alpha * (g - u))
+    return x
+
+
+def with_bond_tractions(layout, x, inside, theta):
+    """The state x with the tractions of the bonds ``inside`` a worker from their traces by
+    the bond's law: (u_A - u_B)/theta on side B, its opposite on side A (a worker solves
+    them with their penalty in its matrix: no Robin condition tells their traction)."""
+    x = x.copy()
+    for i in inside:
+        jump = x[layout.slices["u", i, 0]] - x[layout.slices["u", i, 1]]
+        x[layout.slices["t", i, 0]] = -jump / theta
+        x[layout.slices["t", i, 1]] = jump / theta
     return x
 
 
@@ -285,7 +302,7 @@ class _Loop:
 
     def laws(self, psi, direct=False):
         return robin_laws(self.problem, self.layout, psi, self.theta, self.strategy.sides,
-                          direct)
+                          direct, self.strategy.bonds_inside)
 
     def iterate(self, x, psi):
         """Solve every subdomain for the state x and the contact set psi; return x~. The
@@ -295,7 +312,9 @@ class _Loop:
         for group in self.sweep:
             data = robin_data(self.layout, image, laws)
             traces, group_seconds, descent = self.solve(data, group)
-            image = state_after_solve(self.layout, data, traces, image)
+            image = with_bond_tractions(self.layout,
+                                        state_after_solve(self.layout, data, traces, image),
+                                        self.strategy.bonds_inside, self.theta)
             seconds = {**seconds, **group_seconds,
                        "wait": seconds["wait"] + group_seconds["wait"]}
             self.descent = descent if descent is not None else self.descent
@@ -322,9 +341,10 @@ class _Loop:
             "seconds": time.perf_counter() - self.start,
             "wait": self.seconds["wait"],
         }
-        for name in self.problem.subdomains:
+        workers = [name for group in self.sweep for name in group]
+        for name in workers:
             row[f"cpu_{name}"] = self.seconds[name]
-        for name in self.problem.subdomains:
+        for name in workers:
             row[f"back_{name}"] = self.seconds[f"back_{name}"]
         self.history.append(row)
         if len(self.history) == 3:
@@ -506,10 +526,14 @@ class _ActiveSetLoop(_Loop):
 
     def run(self):
         knobs, layout, eps = self.knobs, self.layout, self.knobs.eps_u
-        scale = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
-        scale = scale * np.sqrt(layout.entry_weight)
+        measure = np.where(layout.displacement_mask, 1.0, 1.0 / self.gamma)
+        measure = measure * np.sqrt(layout.entry_weight)
+        # the bonds inside a worker are its solve's answer to the contact state, not
+        # iterated on: left out of the residual (their tractions, from the penalty of a
+        # trace jump, carry rounding far above the contacts'), measured by their images
+        scale = measure * ~self.inside_mask()
         anderson = Anderson(scale, knobs.anderson_depth, knobs.anderson_filter,
-                            knobs.anderson_first_relaxation, layout.parts)
+                            knobs.anderson_first_relaxation, layout.parts, measure)
         if self.start_state is not None:
             x = self.start_state.copy()
         elif self.coarse is not None:
@@ -575,6 +599,15 @@ class _ActiveSetLoop(_Loop):
                 x = x_next
         raise AssertionError("the monitor stops at max_iterations")
 
+    def inside_mask(self):
+        """The state's entries of the bonds inside a worker (Strategy.bonds_inside)."""
+        mask = np.zeros(self.layout.size, dtype=bool)
+        for i in self.strategy.bonds_inside:
+            for kind in ("u", "t"):
+                for side in (0, 1):
+                    mask[self.layout.slices[kind, i, side]] = True
+        return mask
+
     def interface_system(self, x):
         """The frozen-set system of the subdomains' Robin maps, or None where some
         subdomain has none (its solves are then iterated). The maps do not depend on the
@@ -585,5 +618,6 @@ class _ActiveSetLoop(_Loop):
         maps = self.robin_maps(robin_data(self.layout, x, self.laws(empty, direct=True)))
         if maps is None:
             return None
-        sides = {name: self.problem.sides_of(name) for name in maps}
-        return InterfaceSystem(self.layout, sides, maps)
+        sides = {name: self.strategy.sides_of(self.problem, name) for name in maps}
+        return InterfaceSystem(self.layout, sides, maps, lambda state: with_bond_tractions(
+            self.layout, state, self.strategy.bonds_inside, self.theta))

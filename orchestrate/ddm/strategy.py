@@ -19,14 +19,20 @@ _inner_solve and acted on by the loop; another Robin parameter (per interface, s
 another Parameter beside ``gamma``, resolved here, that the loop's laws read.
 """
 
-import math
 from dataclasses import asdict, dataclass, fields, replace
 from typing import Optional
 
 from orchestrate.ddm.coarse import coarse_element_size, paired
 from orchestrate.ddm.robin_parameters import side_parameters
+from orchestrate.mesh.problem_size import estimated_dofs
 
 PAPER, ACTIVE_SET = "paper", "active-set"
+COATED_BASE = "coated_base"          # the worker of the base with its coatings
+# The tightest eps_u the loop reaches with the bonds inside a worker: their penalty in one
+# matrix rounds the contact state to about 1e-10, which the stopping test's amplification
+# lifts to 1e-9 - 1e-8 (measured: runs at eps_u 1e-10 stagnated near relative changes of
+# 5e-13). A tighter tolerance keeps them exchanged.
+INSIDE_TIGHTEST_EPS_U = 1e-8
 DIRECT, ITERATE, TWO_LEVEL = "direct", "iterate", "two-level"
 NO_INNER_SOLVE = "none"              # the paper's loop: no frozen contact set
 DIRECT_OR_ITERATE = "direct or iterate"   # auto below two levels: decided by the workers
@@ -124,6 +130,17 @@ class Strategy:
     # half-width (b; model/estimate.py) where the first state interpenetrates nowhere
     # (robin.py's first_contact_set); None: the points touched first
     first_contact: Optional[float] = None
+    # the workers, ((worker, (its subdomains, ...)), ...): every subdomain its own, or
+    # (Settings.bonds "inside") the base and its coatings one, COATED_BASE
+    # (freefem/coated_base.edp); and the interfaces inside a worker (its bonds), which
+    # the loop does not exchange
+    workers: tuple = ()
+    bonds_inside: tuple = ()
+
+    def sides_of(self, problem, worker):
+        """(interface index, side index) of every side of a worker's subdomains, in their
+        order: what it is asked and answers (Subdomains)."""
+        return [side for name in dict(self.workers)[worker] for side in problem.sides_of(name)]
 
     @property
     def two_levels(self):
@@ -158,6 +175,8 @@ class Strategy:
                                 scene_unit=unit)
         record["gamma_theta"] = self.gamma.value * self.theta.value
         record["sweep"] = [list(group) for group in self.sweep]
+        record["workers"] = {worker: list(names) for worker, names in self.workers}
+        record["bonds_inside"] = list(self.bonds_inside)
         factor, unit = in_scene["gamma"]
         record["sides"] = [{**side, "scene_gamma": side["gamma"] * factor, "scene_unit": unit}
                            for side in record["sides"]]
@@ -174,16 +193,29 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, contrast=Fals
     theta, default_rule = settings.default_theta()
     inner_solve = _inner_solve(settings, problem, coarse, contrast)
     gamma, gamma_rule = settings.robin_choice()
+    inside = _bonds_inside(settings, problem, inner_solve, half_width)
+    if inside and inner_solve.pending:
+        # chosen where the maps would not pay: the loop iterates
+        inner_solve = replace(
+            inner_solve, planned=ITERATE, decided=ITERATE,
+            decided_on={"auto_direct_unknowns": settings.auto_direct_unknowns,
+                        "weighted_unknowns": _weighted_unknowns(problem), "estimated": True},
+            rule=(f"{inner_solve.rule}. Decided before the workers started: iterate, the "
+                  "coatings inside the base's worker (bonds 'inside'), for the maps of each "
+                  "worker apart would not pay (weighted by their estimated dofs)"))
+    workers = _workers(problem, inside)
     return Strategy(
         loop=settings.method,
         # the active-set loop solves the coatings from the bodies' fresh traces (a
-        # Gauss-Seidel sweep; theirs are the cheap solves): fewer iterations
-        sweep=(tuple(problem.subdomains),) if paper else problem.sweep,
+        # Gauss-Seidel sweep; theirs are the cheap solves): fewer iterations; with the
+        # coatings inside the base's worker, its workers at once
+        sweep=((tuple(problem.subdomains),) if paper
+               else (tuple(name for name, _ in workers),) if inside else problem.sweep),
         # two levels: the coarse level models the fine iteration with every side held
         # (its maps need fixed matrices), so the fine loop holds them too
         sides=side_parameters(problem, problem.robin, settings.robin_sides,
-                              math.inf if inner_solve.planned == TWO_LEVEL
-                              else settings.hold_contrast, paper),
+                              settings.hold_contrast, paper,
+                              hold_all=inner_solve.planned == TWO_LEVEL),
         inner_solve=inner_solve,
         theta=Parameter(settings.theta, "b/E", problem.penalty,
                         default_rule if settings.theta == theta else "given (theta)"),
@@ -192,7 +224,64 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, contrast=Fals
                 if inner_solve.planned == TWO_LEVEL else None),
         knobs=LoopKnobs.of(settings),
         first_contact=(half_width if half_width and problem.scene.load.force is not None
-                       and not paper else None))
+                       and not paper else None),
+        workers=workers,
+        bonds_inside=(tuple(i for i, interface in enumerate(problem.interfaces)
+                            if interface.kind == "bond") if inside else ()))
+
+
+def _bonds_inside(settings, problem, inner_solve, half_width):
+    """Whether the base and its coatings are solved by one worker (Settings.bonds
+    "inside"): where the active-set loop iterates on one level (asked, or auto where the
+    maps of each worker apart would not pay for a direct solve: they are kept from scene
+    to scene, a coated base is new with every coating) and every patch is thinner than
+    the a priori contact half-width (a thicker one is a body of its own under the
+    contact, whose exchange with the base converges as fast: measured on the gallery,
+    one worker was slower there), within the tolerance it reaches
+    (INSIDE_TIGHTEST_EPS_U)."""
+    if (settings.method == PAPER or settings.bonds != "inside" or not problem.bonds
+            or inner_solve.planned not in (ITERATE, DIRECT_OR_ITERATE)
+            or settings.eps_u < INSIDE_TIGHTEST_EPS_U):
+        return False
+    if half_width and any(c.thickness > half_width for c in problem.scene.coatings):
+        return False
+    return inner_solve.planned == ITERATE or not _maps_would_pay(problem, settings)
+
+
+def _maps_would_pay(problem, settings):
+    """Subdomains._maps_pay before any worker started, every worker new: each one's
+    interface unknowns weighted by its estimated dofs over the largest's, against
+    auto_direct_unknowns."""
+    return all(weighted <= settings.auto_direct_unknowns
+               for weighted in _weighted_unknowns(problem).values())
+
+
+def _weighted_unknowns(problem):
+    """{subdomain: its interface unknowns times its estimated dofs over the largest's}."""
+    dofs = estimated_dofs(problem)
+    largest = max(dofs.values())
+    return {name: float(sum(problem.interfaces[i].size * problem.interfaces[i].components
+                            for i, _ in problem.sides_of(name)) * dofs[name] / largest)
+            for name in dofs}
+
+
+def _workers(problem, inside):
+    """The workers and their subdomains: each subdomain its own, or (``inside``) the base
+    and its coatings one (COATED_BASE), after the indenter's. Two levels exchange the
+    bonds: the coarse level models the loop worker by worker with its own maps.
+
+    Why inside: a thin coating and its base, exchanged across their bond, have
+    Dirichlet-to-Neumann responses no Robin parameter matches at once (a membrane's grows
+    as k^2, the base's as k), and their exchange was most of the loop's iterations
+    (docs/method.md, "The coated base")."""
+    names = list(problem.subdomains)
+    if not inside:
+        return tuple((name, (name,)) for name in names)
+    subdomains = problem.subdomains.items()
+    base = tuple(name for name, sub in subdomains if not (sub.coating or sub.stamp))
+    coated = base + tuple(name for name, sub in subdomains if sub.coating)   # the base first
+    others = tuple((name, (name,)) for name in names if name not in coated)
+    return others + ((COATED_BASE, coated),)
 
 
 def _inner_solve(settings, problem, coarse, contrast=False):

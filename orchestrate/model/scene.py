@@ -48,6 +48,7 @@ SHAPES = ("block", "roller")
 METHODS = ("active-set", "paper")
 INNER_SOLVES = ("auto", "direct", "iterate", "two-level")   # a contact set's fixed point
 ROBIN_SIDES = ("neighbour", "equal")   # each interface side's gamma (ddm/robin_parameters.py)
+BONDS = ("inside", "exchanged")        # the active-set loop's bonds (ddm/strategy.py)
 WORKERS = ("persistent", "fresh")
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
 MESH_LEVEL_LIMIT = 16   # the paper's mesh refined 16 times: about 7 million unknowns
@@ -69,9 +70,9 @@ KNOB_RANGES = {
     "robin_two_level_per_length": (*ROBIN_RANGE, "E", "gamma = robin_two_level_per_length "
                                    "/ element_size: beyond, the Robin exchange stops "
                                    "converging (robin's own range)"),
-    "hold_contrast": (0.0, 1e12, "factor", "0: no side holds, and every worker factorises "
-                      "again for each contact set; large: every side holds, and a soft "
-                      "body's inactive points crawl under a stiff neighbour's coefficient"),
+    "hold_contrast": (0.0, 1e12, "factor", "0: every side holds, and the inactive points "
+                      "of a body as soft as its neighbour crawl; large: no side holds, and "
+                      "every worker factorises again for each contact set"),
     "auto_direct_unknowns": (0, 10 ** 6, "interface unknowns", "0: auto probes no new "
                              "worker's map; beyond, the dense interface system of the "
                              "maps outgrows any machine"),
@@ -504,6 +505,12 @@ class Settings:
                                    # neighbour's plane-strain modulus over the stiffer
                                    # body's (orchestrate/ddm/robin_parameters.py);
                                    # "equal", gamma on every side
+    bonds: str = "inside"          # the active-set loop on one level: "inside", the base
+                                   # and its coatings solved by one worker
+                                   # (freefem/coated_base.edp), the bonds in its matrix;
+                                   # "exchanged", every coating its own worker, the bonds
+                                   # Robin-exchanged as the paper's loop (and two levels)
+                                   # exchange them
     rho: float = 0.5               # relaxation (24), in (0, 1]
     eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
     max_iterations: int = 3000
@@ -528,15 +535,19 @@ class Settings:
     # docs/method.md). The defaults of theta and gamma, where not given:
     theta_per_length: float = 4e-3  # 1/E: the active-set loop's theta per b of interface
                                     # element: the penalty's error stays below the mesh's
-    robin_one_level: float = 2.0    # E/b: the active-set loop's gamma on one level (best
-                                    # on the figure scenes)
+    robin_one_level: float = 8.0    # E/b: the active-set loop's gamma on one level (on
+                                    # the gallery's meshes, sized to the contact, 20-50 %
+                                    # fewer iterations than 2, the best on the figures'
+                                    # b/16, whose scenes the maps solve directly)
     robin_two_level_per_length: float = 4.0  # E: with two levels gamma is this over
                                     # element_size: the stiffness of the interface modes
                                     # the coarse mesh cannot see, which it damps fastest
     hold_contrast: float = 4.0      # a side holds its inactive contact points (a matrix
-                                    # that never changes) unless its neighbour is more than
-                                    # this many times as stiff as its body (E*); such a side
-                                    # releases them (robin_parameters.py)
+                                    # that never changes) only where its body is at least
+                                    # this many times as stiff (E*) as its neighbour; the
+                                    # others release them (robin_parameters.py); auto takes
+                                    # no coarse level where a neighbour is more than this
+                                    # many times as stiff
     # auto's inner solve:
     auto_direct_unknowns: int = 250  # interface unknowns: auto solves each contact set
                                     # directly while every new worker has at most this
@@ -577,7 +588,7 @@ class Settings:
     paper_amplification_window: int = 50  # pairs of iterates whose amplification it reads
     # Anderson acceleration (the active-set loop):
     anderson_depth: int = 100       # pairs of iterates its secant model keeps
-    anderson_filter: float = 1e-10  # relative: a secant whose QR diagonal is below this
+    anderson_filter: float = 1e-8   # relative: a secant whose QR diagonal is below this
                                     # times its norm adds no direction and is dropped
     anderson_first_relaxation: float = 1.0  # factor: its first step after a restart,
                                     # x + this (G(x) - x)
@@ -592,6 +603,7 @@ class Settings:
         _choice("method", self.method, METHODS)
         _choice("inner_solve", self.inner_solve, INNER_SOLVES)
         _choice("robin_sides", self.robin_sides, ROBIN_SIDES)
+        _choice("bonds", self.bonds, BONDS)
         _require(not (self.method == "paper" and self.inner_solve == "direct"), "inner_solve",
                  "inner_solve = 'direct' needs method = 'active-set': the paper's loop "
                  "updates its contact set at every iteration and has no fixed point to solve")

@@ -12,37 +12,9 @@ import numpy as np
 
 from orchestrate.workers import freefem
 from orchestrate.ddm.contact import bond_traction, contact_stress
-from orchestrate.workers.exchange import ShellNumbers
+from orchestrate.workers.problem_file import write_problem
 from orchestrate.workers.subdomains import write_inputs
 from orchestrate.run.plan import prepare
-
-
-def write_problem(problem, files, path):
-    """The problem file monolithic.edp reads (its header says the format)."""
-    scene, names = problem.scene, list(problem.subdomains)
-    load = (f"force {scene.half_force!r}" if scene.load.force is not None
-            else f"descent {scene.load.displacement!r}")
-    lines = [f"{problem.penalty!r} {load} {len(names)} {len(problem.interfaces)}"]
-    for name, subdomain in problem.subdomains.items():
-        if subdomain.kind == "rigid":
-            lines.append(" ".join(["rigid", "-", files[name]["sides"]]))
-        elif subdomain.kind == "body":
-            numbers = [subdomain.E, subdomain.nu]
-            lines.append(" ".join(["body", files[name]["mesh"], *map(repr, numbers),
-                                   files[name]["sides"]]))
-        else:
-            numbers = ShellNumbers.of(subdomain).encode().split()
-            lines.append(" ".join(["shell", files[name]["nodes"], *numbers, files[name]["sides"]]))
-    for i, interface in enumerate(problem.interfaces):
-        ends = []
-        for side in interface.sides:
-            position = [k for k, (j, _) in enumerate(problem.sides_of(side.subdomain)) if j == i]
-            ends += [names.index(side.subdomain), position[0]]
-        kind = 0 if interface.kind == "contact" else 1
-        lines.append(" ".join(map(str, [kind, *ends])))
-        lines.append(f"{interface.size} " + " ".join(map(repr, interface.gap.tolist())))
-    with open(path, "w") as out:
-        out.write("\n".join(lines) + "\n")
 
 
 def solve_monolithic(problem, workdir):

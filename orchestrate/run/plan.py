@@ -13,9 +13,9 @@ shell until it must refine (thinner than about b/32), and a run's time follows i
 unknowns (docs/findings.md, "Speed and accuracy").
 
 On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse level out
-where a side releases its inactive points (a neighbour more than hold_contrast times as
-stiff, ddm/robin_parameters.py): the coarse level models the loop with every side held,
-which crawls under such a contrast (the near-rigid cylinder at mesh level 2: two levels
+where some side's neighbour is more than hold_contrast times as stiff as its body
+(ddm/robin_parameters.py): the coarse level models the loop with every side held, which
+crawls under such a contrast (the near-rigid cylinder at mesh level 2: two levels
 stagnated and fell back to the direct solve in 57 s; iterated with the sides released,
 85 iterations and 7.5 s).
 """
@@ -23,7 +23,7 @@ stagnated and fell back to the direct solve in 57 s; iterated with the sides rel
 from dataclasses import dataclass, replace
 
 from orchestrate.ddm.coarse import coarse_settings
-from orchestrate.ddm.robin_parameters import releases_any
+from orchestrate.ddm.robin_parameters import contrast_exceeds
 from orchestrate.ddm.strategy import plan_strategy
 from orchestrate.mesh.discretization import discretize
 from orchestrate.mesh.problem_size import check_size, estimated_dofs
@@ -100,7 +100,7 @@ def prepare(scene, settings):
     solved, model_choice = choose_models(solved, settings, a)
     problem = discretize(solved, settings)
     contrast = (settings.inner_solve == AUTO and settings.two_levels
-                and releases_any(problem, settings.robin_sides, settings.hold_contrast))
+                and contrast_exceeds(problem, settings.robin_sides, settings.hold_contrast))
     if contrast:       # a coarse level would hold every side: one level, its gamma
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
         problem = discretize(solved, settings)

@@ -97,8 +97,9 @@ def solve_run(scene, settings, out_dir, progress=None, overwrite=False, start_fr
           CoarseLevel(problem, plan.coarse, strategy.knobs.coarse_newton_steps)  # probes
           if strategy.two_levels else contextlib.nullcontext() as coarse_level):  # meanwhile
         scratch = str(folder.scratch)
-        files = write_inputs(problem, workdir)
-        with start_subdomains(problem, settings, files, workers) as subdomains:
+        files = write_inputs(problem, workdir, strategy.workers)
+        with start_subdomains(problem, settings, files, workers, strategy.workers,
+                              strategy.inner_solve.planned == "iterate") as subdomains:
             if strategy.inner_solve.pending:    # auto: whether the maps pay, on the workers' sizes
                 strategy = strategy.decided(subdomains.solves_directly, subdomains.map_costs())
             setup_seconds = time.perf_counter() - started

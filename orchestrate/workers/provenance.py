@@ -25,7 +25,8 @@ import subprocess
 from orchestrate.paths import PROJECT_DIR, forms_dir
 
 # The worker script of each kind of subdomain (freefem/): every script a run's workers run
-SCRIPTS = {"body": "body.edp", "shell": "shell.edp", "rigid": "rigid.edp"}
+SCRIPTS = {"body": "body.edp", "shell": "shell.edp", "rigid": "rigid.edp",
+           "coated_base": "coated_base.edp"}    # the base with its coatings
 WORKER_SCRIPTS = tuple(SCRIPTS.values())
 _INCLUDE = re.compile(r'^\s*include\s+"([^"]+)"', re.MULTILINE)
 _HASH_DIGITS = 16       # hex digits kept: 64 bits, far from any chance collision

@@ -1,8 +1,11 @@
 """The subdomain workers of a run and the files they read.
 
 Every body (the indenter, the base, a 2D coating patch) runs freefem/body.edp and every
-shell patch freefem/shell.edp, each on its own mesh or mid-line and sides file; what
-they are sent and send back are the records of orchestrate/workers/exchange.py. Within a
+shell patch freefem/shell.edp, each on its own mesh or mid-line and sides file; or the
+base and its coatings run one worker together, freefem/coated_base.edp, on their files
+and a problem file (problem_file.py) that bonds them (the run's Strategy.workers says
+which). What they are sent and send back are the records of
+orchestrate/workers/exchange.py. Within a
 Robin iteration the solves are independent: every request is written before any reply
 is read, so the workers compute at the same time.
 The workers come from a Session (orchestrate/workers/session.py), which may have kept them from
@@ -11,8 +14,11 @@ an earlier scene; a kept worker's solves become evaluations of its Robin-to-trac
 """
 
 from dataclasses import replace
+import hashlib
 import os
 import time
+
+import numpy as np
 
 from orchestrate.errors import system_failure
 from orchestrate.faults import checkpoint
@@ -21,19 +27,42 @@ from orchestrate.workers.exchange import (BodyOutput, Command, OutputRequest, Ro
                                           TraceReply)
 from orchestrate.mesh.meshes import coating_mesh, write_body_mesh, write_medit
 from orchestrate.mesh.body_plans import BodyPlan
+from orchestrate.workers.problem_file import write_problem
 from orchestrate.workers.robin_map import check, receive_map, send_map_request
 from orchestrate.workers.provenance import SCRIPTS
 from orchestrate.workers.session import body_fingerprint, files_fingerprint
 
 
-def write_inputs(problem, workdir):
+def write_inputs(problem, workdir, workers=()):
     """Meshes, shell nodes and sides files of every subdomain, in ``workdir``; returns
     {name: {"mesh" or "nodes": path, "sides": path, "geometry": (fingerprint of what
-    they hold, the origin it is taken from)}} (orchestrate/workers/session.py)."""
+    they hold, the origin it is taken from)}} (orchestrate/workers/session.py). A worker
+    of several subdomains (``workers``: Strategy.workers) gets their problem file:
+    {worker: {"problem": path, "geometry": (fingerprint, the origins of its subdomains)}}."""
     try:
-        return _write_inputs(problem, workdir)
+        files = _write_inputs(problem, workdir)
+        for worker, names in workers:
+            if names != (worker,):
+                files[worker] = _write_problem(problem, files, workdir, worker, names)
+        return files
     except OSError as error:
         raise system_failure(error, "writing the meshes and interface files") from None
+
+
+def _write_problem(problem, files, workdir, worker, names):
+    """The problem file of a worker of several subdomains, and its geometry: what its
+    subdomains' files hold and the file's numbers (its paths left out: a worker kept from
+    another folder is the same worker), each subdomain's place its own origin."""
+    path = os.path.join(workdir, f"{worker}.txt")
+    write_problem(problem, files, path, names)
+    digest = hashlib.sha256()
+    paths = {files[name][key]: files[name]["geometry"][0] for name in names
+             for key in ("mesh", "nodes", "sides") if key in files[name]}
+    with open(path) as text:
+        for token in text.read().split():
+            digest.update(paths.get(token, token).encode() + b" ")
+    origins = np.array([files[name]["geometry"][1] for name in names])
+    return {"problem": path, "geometry": (digest.hexdigest(), origins)}
 
 
 def _write_inputs(problem, workdir):
@@ -65,7 +94,10 @@ def _write_inputs(problem, workdir):
 
 
 def worker_arguments(subdomain, files):
-    """The command-line arguments of a subdomain's worker script (SCRIPTS)."""
+    """The command-line arguments of a subdomain's worker script (SCRIPTS); None: a worker
+    of several subdomains."""
+    if subdomain is None:
+        return ["-problem", files["problem"]]
     if subdomain.kind == "rigid":
         return ["-sides", files["sides"]]
     if subdomain.kind == "body":
@@ -95,7 +127,7 @@ def load_arguments(problem):
 # scene with kept workers.
 
 # Arguments that name a file: the worker's identity is the file's content (its geometry).
-_FILE_ARGUMENTS = {"-mesh", "-nodes", "-sides"}
+_FILE_ARGUMENTS = {"-mesh", "-nodes", "-sides", "-problem"}
 
 
 class Subdomains:
@@ -106,26 +138,33 @@ class Subdomains:
     Robin coefficients are the map's (that loop's never change). ``inner_solve``: with
     "direct", every new worker gives its map too, and with every map known the loop
     solves each contact set's fixed point directly (robin_maps); "auto" does so where
-    the maps pay (_maps_pay); "iterate" never. On a mesh fine enough for two levels,
-    "auto" and "two-level" use no map at all, nor does a fresh process per solve."""
+    the maps pay (_maps_pay); "iterate" never, nor "auto" where the run's strategy
+    planned to iterate (``iterate``). On a mesh fine enough for two levels, "auto" and
+    "two-level" use no map at all, nor does a fresh process per solve. ``workers``: the
+    run's workers and their subdomains (Strategy.workers), by default each subdomain its
+    own; a worker of several answers for all their sides, in their order."""
 
-    def __init__(self, problem, files, session):
+    def __init__(self, problem, files, session, workers=None, iterate=False):
         self.problem = problem
         self.session = session
         settings = problem.settings
         inner_solve = settings.inner_solve
         self.use_maps = (settings.method != "paper" and settings.workers != "fresh"
                          and (inner_solve == "direct" or not settings.two_levels))
-        self.sides = {name: problem.sides_of(name) for name in problem.subdomains}
-        self.components = {name: [problem.interfaces[i].components for i, _ in self.sides[name]]
-                           for name in problem.subdomains}
-        self.shapes = {name: [(problem.interfaces[i].components, problem.interfaces[i].size)
-                              for i, _ in self.sides[name]] for name in problem.subdomains}
+        # {worker: its subdomains} (Strategy.workers; by default each subdomain its own)
+        self.parts = dict(workers or ((name, (name,)) for name in problem.subdomains))
+        self.sides = {worker: [side for name in names for side in problem.sides_of(name)]
+                      for worker, names in self.parts.items()}
+        self.components = {worker: [problem.interfaces[i].components for i, _ in sides]
+                           for worker, sides in self.sides.items()}
+        self.shapes = {worker: [(problem.interfaces[i].components, problem.interfaces[i].size)
+                                for i, _ in sides] for worker, sides in self.sides.items()}
         self.specs, self.keys, self.origins = {}, {}, {}
-        for name, subdomain in problem.subdomains.items():
-            script = SCRIPTS[subdomain.kind]
+        for name, names in self.parts.items():
+            subdomain = problem.subdomains[name] if names == (name,) else None
+            script = SCRIPTS[subdomain.kind if subdomain else "coated_base"]
             arguments = worker_arguments(subdomain, files[name])
-            if subdomain.stamp:
+            if subdomain and subdomain.stamp:
                 arguments += load_arguments(problem)
             self.specs[name] = (script, arguments)
             geometry, self.origins[name] = files[name]["geometry"]
@@ -134,14 +173,26 @@ class Subdomains:
             key = (script, geometry, tuple(arguments[::2]), tuple(numbers))
             # equal patches of one scene (a shell's files hold no place) get a worker each
             self.keys[name] = key + (sum(k[:-1] == key for k in self.keys.values()),)
-        self.unknowns = {name: sum(problem.interfaces[i].size * problem.interfaces[i].components
-                                   for i, _ in self.sides[name]) for name in problem.subdomains}
+        # the unknowns a map probes: the sides with a Robin term (not a bond inside)
+        self.unknowns = {worker: sum(problem.interfaces[i].size * problem.interfaces[i].components
+                                     for i, _ in sides if not self._inside(i))
+                         for worker, sides in self.sides.items()}
         self.entries = {}
         self.last_requests, self.mapped = {}, {}
         self._pending = {}           # map requests sent and not yet answered, by name
         self.dofs = self._start()
-        self.direct = self.use_maps and inner_solve in ("auto", "direct")
+        # auto may solve directly unless the run's strategy planned to iterate
+        self.direct = (self.use_maps and inner_solve in ("auto", "direct")
+                       and not iterate)
         self.map_new = self.direct and (inner_solve == "direct" or self._maps_pay())
+
+    def _inside(self, i):
+        """Whether interface i lies inside one worker (a bond of the coated base)."""
+        return any(all(side.subdomain in names for side in self.problem.interfaces[i].sides)
+                   for names in self.parts.values() if len(names) > 1)
+
+    def _stamp(self, worker):
+        return any(self.problem.subdomains[name].stamp for name in self.parts[worker])
 
     def solve_directly(self):
         """From now on every worker gives its map, and the loop solves each contact set
@@ -218,7 +269,7 @@ class Subdomains:
                 reply = entry.worker.receive(TraceReply.decode, self.shapes[name])
             traces.update(reply.by_side(self.sides[name]))
             seconds[name], seconds[f"back_{name}"] = reply.seconds, reply.back_seconds
-            if self.problem.subdomains[name].stamp:
+            if self._stamp(name):
                 descent = reply.descent
         seconds["wait"] = time.perf_counter() - start
         return traces, seconds, descent
@@ -296,21 +347,30 @@ class Subdomains:
         # small worker's reply may already sit whole in its FIFO)
         checkpoint("output")
         for name, entry in self.entries.items():
-            subdomain = self.problem.subdomains[name]
-            fields = subdomain.coating or self.problem.settings.body_fields
-            entry.worker.send(Command.OUTPUT, OutputRequest(fields))
+            entry.worker.send(Command.OUTPUT, self._output_request(self.parts[name][0]))
         outputs = {}
         for name, entry in self.entries.items():
-            if self.problem.subdomains[name].kind in ("body", "rigid"):
-                output = entry.worker.receive(BodyOutput.decode)
-                dx, dy = self.origins[name] - entry.origin
-                output = replace(output, columns={**output.columns,
-                                                  "x1": output.columns["x1"] + dx,
-                                                  "x2": output.columns["x2"] + dy})
-            else:
-                output = entry.worker.receive(ShellOutput.decode)
-            outputs[name] = output
+            # a worker of several subdomains answers one request per subdomain, in turn;
+            # each body's place its own (a kept worker's mesh may lie elsewhere)
+            shifts = np.reshape(self.origins[name] - entry.origin, (-1, 2))
+            for k, (part, (dx, dy)) in enumerate(zip(self.parts[name], shifts)):
+                if k > 0:
+                    entry.worker.send(Command.OUTPUT, self._output_request(part))
+                if self.problem.subdomains[part].kind in ("body", "rigid"):
+                    output = entry.worker.receive(BodyOutput.decode)
+                    output = replace(output, columns={**output.columns,
+                                                      "x1": output.columns["x1"] + dx,
+                                                      "x2": output.columns["x2"] + dy})
+                else:
+                    output = entry.worker.receive(ShellOutput.decode)
+                outputs[part] = output
         return outputs
+
+    def _output_request(self, name):
+        """A coating's answers need its fields; the indenter's and the base's only with
+        Settings.body_fields."""
+        return OutputRequest(self.problem.subdomains[name].coating
+                             or self.problem.settings.body_fields)
 
     def _drop(self):
         """Stop this run's workers (a failed run leaves none to the next)."""
@@ -361,8 +421,10 @@ class FreshProcessSubdomains(Subdomains):
             self._drop()
 
 
-def start_subdomains(problem, settings, files, session):
-    """The workers of a run: persistent (default) or a fresh process per solve."""
+def start_subdomains(problem, settings, files, session, workers=None, iterate=False):
+    """The workers of a run (``workers``: Strategy.workers; ``iterate``: its inner solve
+    planned to iterate, whatever the settings asked): persistent (default) or a fresh
+    process per solve."""
     if settings.workers == "fresh":
-        return FreshProcessSubdomains(problem, files, session)
-    return Subdomains(problem, files, session)
+        return FreshProcessSubdomains(problem, files, session, workers, iterate)
+    return Subdomains(problem, files, session, workers, iterate)

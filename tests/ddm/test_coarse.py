@@ -100,13 +100,14 @@ def test_a_coarse_level_left_unused_stops_its_probing_workers_at_once():
 @pytest.fixture(scope="module")
 def fine_runs(tmp_path_factory):
     """The paper's scene (2D coating, b/8, 5E) at mesh level 2: by default (auto: the
-    maps do not pay there, so two levels) and plainly iterated."""
+    maps do not pay there, so two levels) and plainly iterated, the coating its own
+    worker as under two levels (the loop the coarse level accelerates)."""
     base = tmp_path_factory.mktemp("coarse")
     scene = paper_scene(h2=0.125, E2=5.0, model="elastic")
     runs = {}
     for way in ("auto", "iterate"):
-        summary = solve(scene, Settings(mesh_level=2, eps_u=EPS_U, inner_solve=way),
-                        str(base / way))
+        summary = solve(scene, Settings(mesh_level=2, eps_u=EPS_U, inner_solve=way,
+                                        bonds="exchanged"), str(base / way))
         runs[way] = summary, pd.read_csv(base / way / "contact.csv"), pd.read_csv(
             base / way / "interface.csv")
     return runs
@@ -131,7 +132,11 @@ def test_two_levels_carry_a_force_load(tmp_path):
     """A force: the coarse contact problem starts from the points touched first."""
     scene, values = load_scene(SCENES_DIR / "cylinder.toml")
     assert scene.load.force is not None
-    runs = {way: solve(scene, Settings(**{**values, "mesh_level": 2, "inner_solve": way}),
+    # the plain loop as the claim was measured: every worker apart, gamma 2 E/b (at 8 E/b,
+    # the default since the meshes are sized to the contact, it took 55 iterations
+    # against two levels' 21)
+    runs = {way: solve(scene, Settings(**{**values, "mesh_level": 2, "inner_solve": way,
+                                          "bonds": "exchanged", "robin_one_level": 2.0}),
                        str(tmp_path / way)) for way in ("two-level", "iterate")}
     assert runs["two-level"]["descent"] == pytest.approx(runs["iterate"]["descent"],
                                                          rel=2 * EPS_U)
@@ -181,7 +186,8 @@ def test_two_levels_on_the_papers_mesh_coarsen_its_interface_elements(tmp_path):
     coarse = discretize(scene, Settings(element_size=coarse_element_size(Settings())))
     assert [len(c.s) for c in coarse.interfaces] == [(len(f.s) + 1) // 2   # 33, 65
                                                     for f in fine.interfaces]
-    runs = {way: solve(scene, Settings(eps_u=EPS_U, inner_solve=way), str(tmp_path / way))
+    runs = {way: solve(scene, Settings(eps_u=EPS_U, inner_solve=way, bonds="exchanged"),
+                       str(tmp_path / way))
             for way in ("two-level", "direct", "iterate")}
     assert runs["two-level"]["inner_solve_used"] == "two-level"
     assert runs["two-level"]["peak_contact_stress"] == pytest.approx(
@@ -196,11 +202,13 @@ def test_two_levels_the_settings_cannot_give_are_refused():
 
 def test_auto_falls_back_to_the_direct_solve_where_two_levels_stall(tmp_path):
     """A base a thousand times stiffer than the indenter and the 2D coating, at mesh
-    level 2, every side held (hold_contrast 1e12): auto iterates with two levels, which
+    level 2, no contrast counted (hold_contrast 1e12): auto iterates with two levels, every
+    side held, which
     stalls (the iterates stop changing above the tolerance the estimate needs); it falls
     back to solving each contact set directly, says so in the summary, and reaches the
-    direct solve's answer. At the default hold_contrast the indenter's side releases its
-    inactive points, and auto iterates on one level: no fallback, the same answer."""
+    direct solve's answer. At the default hold_contrast the contrast counts
+    (the indenter's side under a neighbour more than 4 times as stiff), and auto iterates
+    on one level: no fallback, the same answer."""
     scene = paper_scene(model="elastic", E3=1000.0)
     auto = solve(scene, Settings(mesh_level=2, hold_contrast=1e12), str(tmp_path / "auto"))
     direct = solve(scene, Settings(mesh_level=2, inner_solve="direct"),

@@ -45,8 +45,18 @@ def _off_centre_full_model():
 TIGHT = Settings(eps_u=1e-10)
 CASES = {
     "paper, shell, active-set loop": (paper_scene(), TIGHT),
-    "paper, shell, iterated contact sets": (paper_scene(), Settings(eps_u=1e-10,
+    # iterated, the coating inside the base's worker (freefem/coated_base.edp: the bond's
+    # penalty in its matrix, whose rounding keeps the estimate above 1e-10: at eps_u
+    # 1e-8), and each its own worker, exchanged across the bond
+    "paper, shell, iterated contact sets": (paper_scene(), Settings(eps_u=1e-8,
                                                                     inner_solve="iterate")),
+    "paper, shell, iterated, bond exchanged": (
+        paper_scene(), Settings(eps_u=1e-10, inner_solve="iterate", bonds="exchanged")),
+    "three patches, shell and 2D, iterated inside the base's worker": (
+        _file("discrete", **{"coating[2].model": "elastic"}),
+        Settings(eps_u=1e-8, inner_solve="iterate")),
+    "coated roller, stretch shell, iterated inside the base's worker": (
+        _file("roller", model="stretch_shell"), Settings(eps_u=1e-8, inner_solve="iterate")),
     "paper, shell, paper loop, theta 1": (
         paper_scene(), Settings(method="paper", theta=1.0, eps_u=1e-10, max_iterations=2000)),
     "paper, 2D coating, h2 b/8": (paper_scene(model="elastic"), TIGHT),
@@ -64,11 +74,16 @@ CASES = {
     "three patches, shell and 2D": (_file("discrete", **{"coating[2].model": "elastic"}), TIGHT),
     "full model, off-centre": (_off_centre_full_model(), TIGHT),
     # contrast: each side's gamma from its neighbour, the soft side's inactive points
-    # released (ddm/robin_parameters.py), iterated and solved directly; at eps_u 1e-8, as
+    # released (ddm/robin_parameters.py: the coated base's matrix changed at the contact
+    # set's changed points by a low-rank update, freefem/robin.idp), iterated (the bond
+    # inside the base's worker, and exchanged) and solved directly; at eps_u 1e-8, as
     # the stopping test's estimate (the amplification of a contrast of 100 times the
     # residual) cannot reach 1e-10 in double precision
     "cylinder 100 E on a coated block, iterated": (
         _file("cylinder", **{"indenter.E": 100.0}), Settings(eps_u=1e-8, inner_solve="iterate")),
+    "cylinder 100 E on a coated block, iterated, bond exchanged": (
+        _file("cylinder", **{"indenter.E": 100.0}),
+        Settings(eps_u=1e-8, inner_solve="iterate", bonds="exchanged")),
     "cylinder 100 E on a coated block, direct": (
         _file("cylinder", **{"indenter.E": 100.0}), Settings(eps_u=1e-8, inner_solve="direct")),
     "cylinder E/100 on a coated block, iterated": (

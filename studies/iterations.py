@@ -1,0 +1,129 @@
+"""Iterations per contact set on the gallery's scenes, against the mesh level: what the
+Robin loop's inner solve costs where it iterates, with the coatings inside the base's
+worker (Settings.bonds "inside", the default) and exchanged across their bonds
+(``python -m studies.iterations``, ``make iterations``).
+
+Every scene of orchestrate/scenes/gallery/ whose mesh the machine takes is solved with
+the inner solve iterated on one level (inner_solve "iterate"), each way of the bonds,
+at mesh levels 1 to 3 (``--levels``), from a cold start, one run each. A row: the
+Robin iterations of the final contact set (the linear iterations that set's fixed
+point took) and the most any set took, the contact sets, all iterations, the time to
+answer and the unknowns. The table's findings: the largest final-set count at each
+level and its growth from the first level to the last, per way of the bonds.
+
+Writes results/iterations.csv and results/iterations.md.
+"""
+
+import argparse
+from dataclasses import replace
+import os
+import sys
+import time
+
+import pandas as pd
+
+import orchestrate
+from orchestrate.errors import ParameterError
+from orchestrate.model import scene_and_settings
+from orchestrate.paths import SCENES_DIR
+from orchestrate.run import RunFailed
+from studies.paths import RESULTS_DIR
+from studies.report import Column, Report, command_line, seconds, significant
+
+GALLERY_DIR = SCENES_DIR / "gallery"
+BONDS = ("inside", "exchanged")
+
+
+def measure(path, level, bonds):
+    """One scene's run at one mesh level, one way of the bonds: its row."""
+    scene, settings = scene_and_settings(path)
+    row = {"scene": path.stem, "mesh_level": level, "bonds": bonds}
+    started = time.perf_counter()
+    try:
+        result = orchestrate.solve(scene, replace(settings, mesh_level=level,
+                                                  inner_solve="iterate", bonds=bonds))
+    except RunFailed as failed:
+        return {**row, "status": failed.summary.get("status"),
+                "time_s": time.perf_counter() - started}
+    except ParameterError as refused:       # a mesh the machine does not take
+        return {**row, "status": f"refused: {refused.key}"}
+    per_set = result.history.groupby("active_set_update").size().tolist()
+    summary = result.summary
+    return {**row, "status": "converged", "time_s": time.perf_counter() - started,
+            "final_set": per_set[-1], "largest_set": max(per_set), "sets": len(per_set),
+            "iterations": summary["iterations"], "unknowns": sum(summary["dofs"].values()),
+            "inside": bool(summary["strategy"]["bonds_inside"])}
+
+
+def study(out, names=None, levels=(1, 2, 3), progress=print):
+    rows = []
+    for path in sorted(GALLERY_DIR.glob("*.toml")):
+        if names and path.stem not in names:
+            continue
+        for level in levels:
+            for bonds in BONDS:
+                row = measure(path, level, bonds)
+                progress(f"{path.stem} level {level} bonds {bonds}: {row['status']}")
+                rows.append(row)
+    table = pd.DataFrame(rows)
+    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
+    table.to_csv(out, index=False)
+    return table
+
+
+def write_report(table, out, command="python -m studies.iterations"):
+    report = Report("Iterations per contact set against the mesh level", command,
+                    data=[os.path.basename(os.path.splitext(out)[0]) + ".csv"])
+    report.text("Each gallery scene iterated on one level (inner_solve = iterate), its "
+                "coatings inside the base's worker (bonds = inside; a scene whose patch is "
+                "thicker than the contact keeps them exchanged: 'inside' says which ran) "
+                "and exchanged across their bonds, from a cold start on this machine; one "
+                "run each.")
+    report.table(table, [
+        Column("scene", "scene"), Column("mesh_level", "level", "{:.0f}"),
+        Column("bonds", "bonds"), Column("status", "outcome"),
+        Column("final_set", "final set", "{:.0f}", "Robin iterations of the final contact set"),
+        Column("largest_set", "largest set", "{:.0f}", "the most of any contact set"),
+        Column("sets", "sets", "{:.0f}", "contact sets"),
+        Column("iterations", "iterations", "{:.0f}", "all Robin iterations"),
+        Column("time_s", "time", seconds, "time to answer, workers started for it"),
+        Column("unknowns", "unknowns", "{:.0f}", "the workers' unknowns"),
+        Column("inside", "inside", "{}", "whether the run solved its bonds inside")])
+    converged = table[table.status == "converged"]
+    for bonds in BONDS:
+        runs = converged[converged.bonds == bonds]
+        if runs.empty:
+            continue
+        worst = runs.groupby("mesh_level").final_set.max()
+        levels = list(worst.index)
+        growth = worst.iloc[-1] / worst.iloc[0] - 1
+        report.finding(f"bonds {bonds}: the final contact set took at most "
+                       + ", ".join(f"{worst[level]:.0f} (level {level})" for level in levels)
+                       + f" iterations; {significant(100 * growth, 2)} % more from level "
+                       f"{levels[0]} to {levels[-1]}. Median time at level {levels[0]}: "
+                       f"{significant(runs[runs.mesh_level == levels[0]].time_s.median())} s.")
+    failed = table[table.status != "converged"]
+    if len(failed):
+        report.finding("Not converged or refused: " + ", ".join(
+            f"{row.scene} level {row.mesh_level} {row.bonds} ({row.status})"
+            for row in failed.itertuples()) + ".")
+    return report.write(out)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", default=str(RESULTS_DIR / "iterations.csv"),
+                        help="the table; the report goes beside it (iterations.md)")
+    parser.add_argument("--levels", type=int, nargs="+", default=[1, 2, 3])
+    parser.add_argument("names", nargs="*", help="scenes of the gallery (default: all)")
+    args = parser.parse_args(argv)
+    table = study(args.out, args.names, args.levels,
+                  progress=lambda text: print(text, file=sys.stderr))
+    with pd.option_context("display.width", 250, "display.max_columns", 40):
+        print(table.to_string(index=False))
+    print(write_report(table, os.path.splitext(args.out)[0] + ".md",
+                       command_line("studies.iterations", argv)))
+
+
+if __name__ == "__main__":
+    main()
