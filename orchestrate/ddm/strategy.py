@@ -23,7 +23,7 @@ from dataclasses import asdict, dataclass, fields, replace
 from typing import Optional
 
 from orchestrate.ddm.coarse import coarse_element_size, paired
-from orchestrate.ddm.robin_parameters import side_parameters
+from orchestrate.ddm.robin_parameters import contrast_exceeds, side_parameters
 from orchestrate.mesh.problem_size import estimated_dofs
 
 PAPER, ACTIVE_SET = "paper", "active-set"
@@ -231,19 +231,26 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, contrast=Fals
 
 
 def _bonds_inside(settings, problem, inner_solve, half_width):
-    """Whether the base and its coatings are solved by one worker (Settings.bonds
-    "inside"): where the active-set loop iterates on one level (asked, or auto where the
+    """Whether the base and its coatings are solved by one worker (Settings.bonds):
+    "inside" where the active-set loop iterates on one level (asked, or auto where the
     maps of each worker apart would not pay for a direct solve: they are kept from scene
     to scene, a coated base is new with every coating) and every patch is thinner than
     the a priori contact half-width (a thicker one is a body of its own under the
     contact, whose exchange with the base converges as fast: measured on the gallery,
     one worker was slower there), within the tolerance it reaches
-    (INSIDE_TIGHTEST_EPS_U)."""
-    if (settings.method == PAPER or settings.bonds != "inside" or not problem.bonds
+    (INSIDE_TIGHTEST_EPS_U); "auto" there too, but only where some side's neighbour is
+    more than hold_contrast times as stiff (results/iterations.md: under such a contrast
+    one worker took a third of the iterations and no more time; between bodies alike,
+    fewer iterations but more time, its requests and replies carrying both sides of
+    every bond)."""
+    if (settings.method == PAPER or settings.bonds == "exchanged" or not problem.bonds
             or inner_solve.planned not in (ITERATE, DIRECT_OR_ITERATE)
             or settings.eps_u < INSIDE_TIGHTEST_EPS_U):
         return False
     if half_width and any(c.thickness > half_width for c in problem.scene.coatings):
+        return False
+    if settings.bonds == "auto" and not contrast_exceeds(problem, settings.robin_sides,
+                                                         settings.hold_contrast):
         return False
     return inner_solve.planned == ITERATE or not _maps_would_pay(problem, settings)
 

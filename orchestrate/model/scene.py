@@ -48,7 +48,7 @@ SHAPES = ("block", "roller")
 METHODS = ("active-set", "paper")
 INNER_SOLVES = ("auto", "direct", "iterate", "two-level")   # a contact set's fixed point
 ROBIN_SIDES = ("neighbour", "equal")   # each interface side's gamma (ddm/robin_parameters.py)
-BONDS = ("inside", "exchanged")        # the active-set loop's bonds (ddm/strategy.py)
+BONDS = ("auto", "inside", "exchanged")  # the active-set loop's bonds (ddm/strategy.py)
 WORKERS = ("persistent", "fresh")
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
 MESH_LEVEL_LIMIT = 16   # the paper's mesh refined 16 times: about 7 million unknowns
@@ -505,12 +505,13 @@ class Settings:
                                    # neighbour's plane-strain modulus over the stiffer
                                    # body's (orchestrate/ddm/robin_parameters.py);
                                    # "equal", gamma on every side
-    bonds: str = "inside"          # the active-set loop on one level: "inside", the base
+    bonds: str = "auto"            # the active-set loop on one level: "inside", the base
                                    # and its coatings solved by one worker
-                                   # (freefem/coated_base.edp), the bonds in its matrix;
-                                   # "exchanged", every coating its own worker, the bonds
-                                   # Robin-exchanged as the paper's loop (and two levels)
-                                   # exchange them
+                                   # (freefem/coated_base.edp), the bonds in its matrix,
+                                   # where the loop iterates; "auto", so under a contrast
+                                   # of the bodies (hold_contrast); "exchanged", every
+                                   # coating its own worker, the bonds Robin-exchanged as
+                                   # the paper's loop (and two levels) exchange them
     rho: float = 0.5               # relaxation (24), in (0, 1]
     eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
     max_iterations: int = 3000

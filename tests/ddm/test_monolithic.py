@@ -48,15 +48,16 @@ CASES = {
     # iterated, the coating inside the base's worker (freefem/coated_base.edp: the bond's
     # penalty in its matrix, whose rounding keeps the estimate above 1e-10: at eps_u
     # 1e-8), and each its own worker, exchanged across the bond
-    "paper, shell, iterated contact sets": (paper_scene(), Settings(eps_u=1e-8,
-                                                                    inner_solve="iterate")),
-    "paper, shell, iterated, bond exchanged": (
-        paper_scene(), Settings(eps_u=1e-10, inner_solve="iterate", bonds="exchanged")),
+    "paper, shell, iterated contact sets": (
+        paper_scene(), Settings(eps_u=1e-8, inner_solve="iterate", bonds="inside")),
+    "paper, shell, iterated, bond exchanged (auto's choice without contrast)": (
+        paper_scene(), Settings(eps_u=1e-10, inner_solve="iterate")),
     "three patches, shell and 2D, iterated inside the base's worker": (
         _file("discrete", **{"coating[2].model": "elastic"}),
-        Settings(eps_u=1e-8, inner_solve="iterate")),
+        Settings(eps_u=1e-8, inner_solve="iterate", bonds="inside")),
     "coated roller, stretch shell, iterated inside the base's worker": (
-        _file("roller", model="stretch_shell"), Settings(eps_u=1e-8, inner_solve="iterate")),
+        _file("roller", model="stretch_shell"),
+        Settings(eps_u=1e-8, inner_solve="iterate", bonds="inside")),
     "paper, shell, paper loop, theta 1": (
         paper_scene(), Settings(method="paper", theta=1.0, eps_u=1e-10, max_iterations=2000)),
     "paper, 2D coating, h2 b/8": (paper_scene(model="elastic"), TIGHT),

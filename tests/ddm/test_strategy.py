@@ -169,9 +169,12 @@ def test_a_knob_out_of_range_is_refused_by_the_command_line_and_the_api(tmp_path
     ({"workers": "fresh"}, ITERATE, 8.0, None),
     ({"mesh_level": 2}, TWO_LEVEL, 64.0, 0.0625),
     ({"mesh_level": 2, "robin_two_level_per_length": 2.0}, TWO_LEVEL, 32.0, 0.0625),
-    # a finer mesh on one level: the maps would not pay, so auto iterates, the coating
-    # inside the base's worker
-    ({"mesh_level": 2, "auto_two_level_mesh_level": 3}, ITERATE, 8.0, None),
+    ({"mesh_level": 2, "auto_two_level_mesh_level": 3}, DIRECT_OR_ITERATE, 8.0, None),
+    # with the bonds inside where the loop iterates: the maps of each worker apart would
+    # not pay on the finer mesh, so auto iterates, the coating inside the base's worker
+    ({"mesh_level": 2, "auto_two_level_mesh_level": 3, "bonds": "inside"}, ITERATE, 8.0,
+     None),
+    ({"inner_solve": "iterate", "bonds": "inside"}, ITERATE, 8.0, None),
     ({"auto_two_level_mesh_level": 1}, TWO_LEVEL, 64.0, 0.125),
     ({"inner_solve": "two-level", "coarse_element_factor": 4.0}, TWO_LEVEL, 64.0, 0.25),
     ({"theta_per_length": 8e-3}, DIRECT_OR_ITERATE, 8.0, None),
@@ -189,9 +192,10 @@ def test_the_plan_resolves_the_strategy_from_the_settings(values, planned, gamma
     assert all(side.gamma == strategy.gamma.solver_value
                and side.hold_inactive == (planned == TWO_LEVEL) and not side.stiff_neighbour
                for side in strategy.sides)
-    # iterated on one level, the coating is solved inside the base's worker (the maps
-    # of the paper's small scene pay: auto keeps every worker apart, to solve directly)
-    if planned == ITERATE:
+    # with bonds "inside", iterated on one level, the coating is solved inside the base's
+    # worker; by default ("auto") only under a contrast of the bodies, which the paper's
+    # scene has not
+    if planned == ITERATE and settings.bonds == "inside":
         assert strategy.sweep == (("indenter", COATED_BASE),)
         assert strategy.workers == (("indenter", ("indenter",)),
                                     (COATED_BASE, ("base", "coating1")))
@@ -431,7 +435,7 @@ def test_auto_decides_to_iterate_where_no_map_pays(tmp_path):
     """Decided before the workers start (the maps of each worker apart would not pay), with
     the coating inside the base's worker; or, with the bonds exchanged, once they
     started."""
-    for bonds in ("inside", "exchanged"):
+    for bonds in ("inside", "exchanged", "auto"):     # auto: no contrast, exchanged
         summary = solve(paper_scene(), Settings(auto_direct_unknowns=0, bonds=bonds),
                         tmp_path / bonds)
         inner_solve = summary["strategy"]["inner_solve"]
@@ -482,7 +486,8 @@ def test_auto_leaves_the_coarse_level_out_under_contrast():
     neighbour 1000 times as stiff) it iterates on one level with its gamma instead."""
     scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
     plan = prepare(scene, Settings(mesh_level=2))
-    assert plan.strategy.inner_solve.planned == ITERATE        # its maps would not pay
+    # its maps would not pay, and under the contrast auto takes the coating inside
+    assert plan.strategy.inner_solve.planned == ITERATE and plan.strategy.bonds_inside
     assert "no coarse level" in plan.strategy.inner_solve.rule
     assert plan.strategy.gamma.value == Settings().robin_one_level and plan.coarse is None
     assert not plan.problem.settings.two_levels
