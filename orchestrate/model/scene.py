@@ -536,8 +536,9 @@ class Settings:
     # docs/method.md). The defaults of theta and gamma, where not given:
     theta_per_length: float = 4e-3  # 1/E: the active-set loop's theta per b of interface
                                     # element: the penalty's error stays below the mesh's
-    robin_one_level: float = 8.0    # E/b: the active-set loop's gamma on one level (on
-                                    # the gallery's meshes, sized to the contact, 20-50 %
+    robin_one_level: float = 8.0    # E/b: the active-set loop's gamma on one level at
+                                    # mesh level 1, times sqrt(mesh_level) finer (on the
+                                    # gallery's meshes, sized to the contact, 20-50 %
                                     # fewer iterations than 2, the best on the figures'
                                     # b/16, whose scenes the maps solve directly)
     robin_two_level_per_length: float = 4.0  # E: with two levels gamma is this over
@@ -754,8 +755,8 @@ class Settings:
 
     def robin_choice(self):
         """(gamma, E/b; the rule that gives it, in words): as given, else the paper's
-        1/theta for its loop; for the active-set loop robin_one_level (measured best on
-        the figure scenes, docs/method.md), or robin_two_level_per_length over the
+        1/theta for its loop; for the active-set loop robin_one_level times the square
+        root of the mesh level (docs/method.md), or robin_two_level_per_length over the
         element length where a coarse correction may take the smooth modes; never above
         1/theta, where the exchange stays away from its singularity gamma theta = 2."""
         if self.robin is not None:
@@ -767,7 +768,13 @@ class Settings:
             rule = (f"robin_two_level_per_length {self.robin_two_level_per_length:g} / "
                     f"element_size {self.element_length:g} b (two levels)")
         else:
-            gamma, rule = self.robin_one_level, "robin_one_level"
+            # an optimised Robin parameter grows as the inverse square root of the
+            # interface element's length (the exchange's slow modes span the frequencies
+            # from the contact's width to the element's)
+            gamma = self.robin_one_level * math.sqrt(self.mesh_level)
+            rule = ("robin_one_level" if self.mesh_level == 1 else
+                    f"robin_one_level {self.robin_one_level:g} x sqrt(mesh_level "
+                    f"{self.mesh_level})")
         if gamma > 1.0 / self.theta:
             return 1.0 / self.theta, f"1/theta, below {rule} = {gamma:g}"
         return gamma, rule

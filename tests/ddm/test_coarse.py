@@ -136,7 +136,8 @@ def test_two_levels_carry_a_force_load(tmp_path):
     # the default since the meshes are sized to the contact, it took 55 iterations
     # against two levels' 21)
     runs = {way: solve(scene, Settings(**{**values, "mesh_level": 2, "inner_solve": way,
-                                          "bonds": "exchanged", "robin_one_level": 2.0}),
+                                          "bonds": "exchanged",
+                                          **({"robin": 2.0} if way == "iterate" else {})}),
                        str(tmp_path / way)) for way in ("two-level", "iterate")}
     assert runs["two-level"]["descent"] == pytest.approx(runs["iterate"]["descent"],
                                                          rel=2 * EPS_U)

@@ -169,11 +169,12 @@ def test_a_knob_out_of_range_is_refused_by_the_command_line_and_the_api(tmp_path
     ({"workers": "fresh"}, ITERATE, 8.0, None),
     ({"mesh_level": 2}, TWO_LEVEL, 64.0, 0.0625),
     ({"mesh_level": 2, "robin_two_level_per_length": 2.0}, TWO_LEVEL, 32.0, 0.0625),
-    ({"mesh_level": 2, "auto_two_level_mesh_level": 3}, DIRECT_OR_ITERATE, 8.0, None),
+    ({"mesh_level": 2, "auto_two_level_mesh_level": 3}, DIRECT_OR_ITERATE, 8.0 * 2 ** 0.5,
+     None),
     # with the bonds inside where the loop iterates: the maps of each worker apart would
     # not pay on the finer mesh, so auto iterates, the coating inside the base's worker
-    ({"mesh_level": 2, "auto_two_level_mesh_level": 3, "bonds": "inside"}, ITERATE, 8.0,
-     None),
+    ({"mesh_level": 2, "auto_two_level_mesh_level": 3, "bonds": "inside"}, ITERATE,
+     8.0 * 2 ** 0.5, None),
     ({"inner_solve": "iterate", "bonds": "inside"}, ITERATE, 8.0, None),
     ({"auto_two_level_mesh_level": 1}, TWO_LEVEL, 64.0, 0.125),
     ({"inner_solve": "two-level", "coarse_element_factor": 4.0}, TWO_LEVEL, 64.0, 0.25),
@@ -489,7 +490,8 @@ def test_auto_leaves_the_coarse_level_out_under_contrast():
     # its maps would not pay, and under the contrast auto takes the coating inside
     assert plan.strategy.inner_solve.planned == ITERATE and plan.strategy.bonds_inside
     assert "no coarse level" in plan.strategy.inner_solve.rule
-    assert plan.strategy.gamma.value == Settings().robin_one_level and plan.coarse is None
+    assert plan.strategy.gamma.value == pytest.approx(Settings().robin_one_level * 2 ** 0.5)
+    assert plan.coarse is None
     assert not plan.problem.settings.two_levels
     assert any(not side.hold_inactive for side in plan.strategy.sides)
     equal = prepare(paper_scene(), Settings(mesh_level=2)).strategy

@@ -116,11 +116,13 @@ def test_the_default_penalty_follows_the_interface_elements():
 
 
 def test_the_default_robin_parameter_is_the_coarse_elements_stiffness_with_two_levels():
-    """gamma = 8 E/b for a loop on its own; with a coarse correction (mesh level 2 and
-    finer) 4 E over the element length, the stiffness of the modes the coarse mesh cannot
-    see; a gamma given is kept, and the paper's loop keeps 1/theta."""
+    """gamma = 8 E/b for a loop on its own, times the square root of the mesh level; with a
+    coarse correction (mesh level 2 and finer) 4 E over the element length, the
+    stiffness of the modes the coarse mesh cannot see; a gamma given is kept, and the
+    paper's loop keeps 1/theta."""
     assert Settings().robin_parameter == 8.0
-    assert Settings(mesh_level=2, inner_solve="iterate").robin_parameter == 8.0
+    assert Settings(mesh_level=2, inner_solve="iterate").robin_parameter == pytest.approx(
+        8.0 * 2 ** 0.5, rel=1e-12)
     assert Settings(mesh_level=2).robin_parameter == pytest.approx(64.0, rel=1e-12)
     assert Settings(mesh_level=3, element_size=0.125).robin_parameter == pytest.approx(32.0)
     assert Settings(mesh_level=2, robin=5.0).robin_parameter == 5.0
