@@ -487,8 +487,11 @@ def test_auto_leaves_the_coarse_level_out_under_contrast():
     neighbour 1000 times as stiff) it iterates on one level with its gamma instead."""
     scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
     plan = prepare(scene, Settings(mesh_level=2))
-    # its maps would not pay, and under the contrast auto takes the coating inside
+    # its maps would not pay, and under the contrast auto takes the coating inside; not
+    # with a fresh process per solve, nor below the tolerance it reaches
     assert plan.strategy.inner_solve.planned == ITERATE and plan.strategy.bonds_inside
+    for values in ({"workers": "fresh"}, {"eps_u": 1e-9}, {"bonds": "exchanged"}):
+        assert not prepare(scene, Settings(mesh_level=2, **values)).strategy.bonds_inside
     assert "no coarse level" in plan.strategy.inner_solve.rule
     assert plan.strategy.gamma.value == pytest.approx(Settings().robin_one_level * 2 ** 0.5)
     assert plan.coarse is None
