@@ -131,7 +131,7 @@ class Strategy:
     # (robin.py's first_contact_set); None: the points touched first
     first_contact: Optional[float] = None
     # the workers, ((worker, (its subdomains, ...)), ...): every subdomain its own, or
-    # (Settings.bonds "inside") the base and its coatings one, COATED_BASE
+    # (where Settings.bonds takes them inside) the base and its coatings one, COATED_BASE
     # (freefem/coated_base.edp); and the interfaces inside a worker (its bonds), which
     # the loop does not exchange
     workers: tuple = ()
@@ -240,9 +240,9 @@ def _bonds_inside(settings, problem, inner_solve, half_width):
     one worker was slower there), within the tolerance it reaches
     (INSIDE_TIGHTEST_EPS_U); "auto" there too, but only where some side's neighbour is
     more than hold_contrast times as stiff (results/iterations.md: under such a contrast
-    one worker took a third of the iterations and no more time; between bodies alike,
-    fewer iterations but more time, its requests and replies carrying both sides of
-    every bond). Never with a fresh process per solve: each factorises anew, its last
+    one worker took far fewer iterations and no more time; between bodies alike, fewer
+    iterations but more time, its requests and replies carrying both sides of every
+    bond). Never with a fresh process per solve: each factorises anew, its last
     digits differ from process to process, and with the penalty in one matrix that noise
     (measured: relative changes stuck near 4e-9 under a near-rigid indenter) kept the
     stopping test above eps_u."""
