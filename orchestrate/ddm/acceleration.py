@@ -94,17 +94,16 @@ class Anderson:
                 self._qr = None
         if self._qr is None and len(self._residuals) > 1:
             # a column dependent on the history, or more columns than unknowns: anew
-            self._qr = np.linalg.qr(self._differences()[0])
+            self._qr = np.linalg.qr(self._residual_differences())
         return r
 
     def _updatable(self):
         """Whether the kept QR is an economic one (R square) that rotations update."""
         return self._qr is not None and self._qr[1].shape[0] == self._qr[1].shape[1]
 
-    def _differences(self):
-        """(dR, dG): the differences of residuals and of images, newest column first."""
-        residuals, images = np.array(self._residuals), np.array(self._images)
-        return (np.diff(residuals, axis=0)[::-1].T, np.diff(images, axis=0)[::-1].T)
+    def _residual_differences(self):
+        """The differences of the residuals, newest column first."""
+        return np.diff(np.array(self._residuals), axis=0)[::-1].T
 
     def step(self, x, g):
         """Next iterate from the current iterate x and its image g = G(x)."""

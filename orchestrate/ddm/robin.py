@@ -157,6 +157,8 @@ def with_bond_tractions(layout, x, inside, theta):
     """The state x with the tractions of the bonds ``inside`` a worker from their traces by
     the bond's law: (u_A - u_B)/theta on side B, its opposite on side A (a worker solves
     them with their penalty in its matrix: no Robin condition tells their traction)."""
+    if not inside:
+        return x
     x = x.copy()
     for i in inside:
         jump = x[layout.slices["u", i, 0]] - x[layout.slices["u", i, 1]]

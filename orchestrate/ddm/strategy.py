@@ -140,7 +140,7 @@ class Strategy:
     def sides_of(self, problem, worker):
         """(interface index, side index) of every side of a worker's subdomains, in their
         order: what it is asked and answers (Subdomains)."""
-        return [side for name in dict(self.workers)[worker] for side in problem.sides_of(name)]
+        return problem.sides_of(*dict(self.workers)[worker])
 
     @property
     def two_levels(self):

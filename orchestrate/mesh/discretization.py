@@ -143,9 +143,11 @@ class Problem:
     penalty: float             # theta, in the scene's units (Settings.theta b/E)
     robin: float               # gamma, in the scene's units (Settings.robin_parameter E/b)
 
-    def sides_of(self, name):
-        """(interface index, side index) of every side of a subdomain, in interface order."""
-        return [(i, k) for i, interface in enumerate(self.interfaces)
+    def sides_of(self, *names):
+        """(interface index, side index) of every side of the subdomains ``names``, one
+        subdomain after the other (a worker of several answers in that order), each in
+        interface order."""
+        return [(i, k) for name in names for i, interface in enumerate(self.interfaces)
                 for k, side in enumerate(interface.sides) if side.subdomain == name]
 
     @property

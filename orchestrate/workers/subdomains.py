@@ -153,8 +153,7 @@ class Subdomains:
                          and (inner_solve == "direct" or not settings.two_levels))
         # {worker: its subdomains} (Strategy.workers; by default each subdomain its own)
         self.parts = dict(workers or ((name, (name,)) for name in problem.subdomains))
-        self.sides = {worker: [side for name in names for side in problem.sides_of(name)]
-                      for worker, names in self.parts.items()}
+        self.sides = {worker: problem.sides_of(*names) for worker, names in self.parts.items()}
         self.components = {worker: [problem.interfaces[i].components for i, _ in sides]
                            for worker, sides in self.sides.items()}
         self.shapes = {worker: [(problem.interfaces[i].components, problem.interfaces[i].size)
@@ -174,8 +173,11 @@ class Subdomains:
             # equal patches of one scene (a shell's files hold no place) get a worker each
             self.keys[name] = key + (sum(k[:-1] == key for k in self.keys.values()),)
         # the unknowns a map probes: the sides with a Robin term (not a bond inside)
+        inside = {i for names in self.parts.values() if len(names) > 1
+                  for i, _ in problem.sides_of(*names)
+                  if all(side.subdomain in names for side in problem.interfaces[i].sides)}
         self.unknowns = {worker: sum(problem.interfaces[i].size * problem.interfaces[i].components
-                                     for i, _ in sides if not self._inside(i))
+                                     for i, _ in sides if i not in inside)
                          for worker, sides in self.sides.items()}
         self.entries = {}
         self.last_requests, self.mapped = {}, {}
@@ -185,11 +187,6 @@ class Subdomains:
         self.direct = (self.use_maps and inner_solve in ("auto", "direct")
                        and not iterate)
         self.map_new = self.direct and (inner_solve == "direct" or self._maps_pay())
-
-    def _inside(self, i):
-        """Whether interface i lies inside one worker (a bond of the coated base)."""
-        return any(all(side.subdomain in names for side in self.problem.interfaces[i].sides)
-                   for names in self.parts.values() if len(names) > 1)
 
     def _stamp(self, worker):
         return any(self.problem.subdomains[name].stamp for name in self.parts[worker])
