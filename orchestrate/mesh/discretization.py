@@ -277,6 +277,15 @@ def simpson(nodes, stretch=1.0):
     return s, weight
 
 
+def revolved(scene, weight, position):
+    """An interface's weights: of its arc length, or in an axisymmetric scene of the
+    surface it sweeps about the axis, 2 pi r ds (the bodies' forms weigh their volume
+    alike, freefem/elasticity.idp), so that its integrals are the whole body's."""
+    if not scene.axisymmetric:
+        return weight
+    return 2.0 * math.pi * position[:, 0] * weight
+
+
 def chord_points(exact):
     """A body's mesh points for the P2 nodes whose exact places are ``exact``: the ends
     of the elements, and the midpoints of the straight edges between them."""
@@ -362,6 +371,7 @@ def discretize(scene, settings):
     for nodes, offset, name, number in partners:
         s, weight = simpson(nodes, face.stretch(offset))
         position = face.point(s, offset)
+        weight = revolved(scene, weight, position)
         normal, tangent = face.normal(s), face.tangent(s)
         gap, touching = indenter_face.pair(position, normal)
         if np.any(gap < -1e-12 * (1.0 + np.abs(position[:, 1]))):
@@ -386,6 +396,7 @@ def discretize(scene, settings):
     for number, coating, nodes in sorted(patches, key=lambda item: item[0]):
         s, weight = simpson(nodes)
         position = face.point(s)
+        weight = revolved(scene, weight, position)
         normal, tangent = face.normal(s), face.tangent(s)
         name = f"coating{number}"
         on_axis = scene.symmetric and nodes[0] == 0.0

@@ -92,8 +92,21 @@ def _face_half_width(scene):
     return scene.indenter.width
 
 
-def _hertz_half_width(force, radius, modulus):
+def _hertz_half_width(force, radius, modulus, revolution=False):
+    """Hertz's contact half-width of a cylinder (plane strain: F per unit width), or the
+    contact radius of a sphere (``revolution``: F the total force)."""
+    if revolution:
+        return (0.75 * force * radius / modulus) ** (1.0 / 3.0)
     return math.sqrt(4.0 * force * radius / (math.pi * modulus))
+
+
+def _layer_half_width(force, radius, thickness, modulus, revolution=False):
+    """The contact half-width of a thin layer of constrained ``modulus`` M pressed alone
+    (Winkler: p = M (delta - x^2 / 2R) / h2): F = 2 M a^3 / (3 R h2) per unit width, or
+    F = pi M a^4 / (4 R h2) under a sphere (``revolution``)."""
+    if revolution:
+        return (4.0 * force * radius * thickness / (math.pi * modulus)) ** 0.25
+    return (1.5 * force * radius * thickness / modulus) ** (1.0 / 3.0)
 
 
 def _body_depths(scene):
@@ -126,6 +139,8 @@ def contact_half_width(scene):
     if math.isinf(radius):
         return face
     force = load.force
+    if scene.axisymmetric and force is None:    # Hertz: the approach is a^2 / R
+        return min(math.sqrt(radius * load.displacement), face)
     if force is None:                     # bisection on log F: descent grows with F
         low, high = -60.0, 60.0
         for _ in range(BISECTIONS):
@@ -135,15 +150,15 @@ def contact_half_width(scene):
             else:
                 high = middle
         force = math.exp(0.5 * (low + high))
-    return min(_hertz_half_width(force, radius, contact_modulus(scene)), face)
+    return min(_hertz_half_width(force, radius, contact_modulus(scene), scene.axisymmetric),
+               face)
 
 
 def predicted_half_width(scene, a=None):
     """The contact half-width the mesh and the first contact set are sized to: the
     bodies' estimate ``a`` (contact_half_width, the model estimate's variable) or, under
     a force, that of the coating patch under the contact's centre, whichever is wider:
-    pressed as a thin layer alone (Winkler: p = M (delta - x^2 / 2R) / h2, so
-    F = 2 M a^3 / (3 R h2), M its constrained modulus) where it is thinner than that
+    pressed as a thin layer alone (_layer_half_width) where it is thinner than that
     contact, else as a half-space of its own modulus under the indenter (Hertz). A
     compliant coating spreads the contact well beyond the bodies' estimate (a polymer
     film on steel: four times); a stiff one leaves the bodies' estimate."""
@@ -157,13 +172,14 @@ def predicted_half_width(scene, a=None):
     if not under or math.isinf(radius):
         return a
     coating = under[0]
-    layer = (1.5 * force * radius * coating.thickness
-             / constrained_modulus(coating.E, coating.nu)) ** (1.0 / 3.0)
+    layer = _layer_half_width(force, radius, coating.thickness,
+                              constrained_modulus(coating.E, coating.nu), scene.axisymmetric)
     if coating.thickness >= layer:          # thick: the coating is the half-space
         indenter = scene.indenter
         compliance = 0.0 if indenter.rigid else (1 - indenter.nu ** 2) / indenter.E
         layer = _hertz_half_width(force, radius,
-                                  1.0 / (compliance + (1 - coating.nu ** 2) / coating.E))
+                                  1.0 / (compliance + (1 - coating.nu ** 2) / coating.E),
+                                  scene.axisymmetric)
     return min(max(a, layer), max(a, _face_half_width(scene)))
 
 

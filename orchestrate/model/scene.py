@@ -27,6 +27,7 @@ from orchestrate.model.units import Units
 
 MODELS = ("shell", "stretch_shell", "elastic")
 SHELL_MODELS = ("shell", "stretch_shell")   # the coating on its mid-line
+REVOLUTION_MODELS = ("elastic", "auto")   # the coating models of an axisymmetric scene
 MODEL_CHOICES = MODELS + ("auto",)            # auto: chosen per patch (run/plan.py)
 THETA_RANGE = (1e-6, 1.0)      # the penalty, b/E
 ROBIN_RANGE = (1e-3, 1e3)      # the Robin parameter, E/b
@@ -302,6 +303,10 @@ class Load:
 class Scene:
     """The indenter, the base, its coating patches (any number, none overlapping) and
     the load. ``symmetric``: a half model, x1 >= 0, with symmetry at x1 = 0.
+    ``axisymmetric``: the bodies are bodies of revolution about x1 = 0 and the scene
+    their meridian section, (x1, x2) = (r, z): a sphere (circle profile) or a
+    paraboloid or a flat punch on a cylinder of radius base.width, coating patches are
+    rings [start, end] in r (from 0: a disc), the load a total force (E b^2).
     ``contact_zone``: the x1 range where the indenter may touch the coatings or the
     bare base (default: wherever its face is over the base); a run whose contact
     reaches an end of it that is not the end of a face fails."""
@@ -312,6 +317,7 @@ class Scene:
     coatings: tuple = ()
     symmetric: bool = True
     contact_zone: Optional[tuple] = None
+    axisymmetric: bool = False
     units: Units = Units()         # the file's units (orchestrate/model/units.py); default b, E
 
     def __post_init__(self):
@@ -326,6 +332,8 @@ class Scene:
             object.__setattr__(self, "contact_zone", tuple(self.contact_zone))
         _require(isinstance(self.symmetric, bool), "symmetric",
                  f"symmetric = {self.symmetric!r} must be true or false")
+        _require(isinstance(self.axisymmetric, bool), "axisymmetric",
+                 f"axisymmetric = {self.axisymmetric!r} must be true or false")
         self.indenter.check("indenter.")
         self.base.check("base.")
         self.load.check("load.")
@@ -386,6 +394,8 @@ class Scene:
     def _check_layout(self):
         base, indenter = self.base, self.indenter
         low = 0.0 if self.symmetric else -base.top
+        if self.axisymmetric:
+            self._check_revolution()
         if self.symmetric:
             _require(indenter.centre == 0, "indenter.centre",
                      f"indenter.centre = {indenter.centre!r} must be 0 in a half model "
@@ -450,6 +460,25 @@ class Scene:
                  f"{MODULUS_RATIO:g} = {moduli[stiffest] / MODULUS_RATIO:g}: the coupled "
                  "problem's conditioning grows with the moduli's ratio")
 
+    def _check_revolution(self):
+        """What a scene of bodies of revolution (axisymmetric) cannot have."""
+        _require(self.symmetric, "symmetric",
+                 "symmetric = false with axisymmetric = true: a body of revolution is "
+                 "modelled by its meridian section, r >= 0 (leave symmetric out)")
+        _require(self.base.shape == "block", "base.shape",
+                 f"base.shape = {self.base.shape!r} with axisymmetric = true: the base of "
+                 "revolution is a cylinder (shape = \"block\": radius base.width, height "
+                 "base.height); a roller is a plane scene")
+        for number, coating in enumerate(self.coatings, start=1):
+            key = f"coating[{number}]."
+            _require(coating.start >= 0, key + "start",
+                     f"{key}start = {coating.start!r}: a ring of an axisymmetric scene lies "
+                     "at r >= 0 (a patch from 0 is a disc)")
+            _require(coating.model in REVOLUTION_MODELS, key + "model",
+                     f"{key}model = {coating.model!r} with axisymmetric = true: a coating "
+                     "of revolution is a 2D body (elastic; auto chooses it); the shell of "
+                     "revolution is not in the tool yet")
+
     @property
     def modulus(self):
         """E, the scene's unit of stress: the stiffer body's modulus (the base's under a
@@ -479,6 +508,8 @@ class Scene:
         """The stamp's force on the modelled part (half of it in a half model)."""
         if self.load.force is None:
             return None
+        if self.axisymmetric:          # the meridian section carries the whole body
+            return self.load.force
         return 0.5 * self.load.force if self.symmetric else self.load.force
 
 
@@ -807,5 +838,6 @@ def scene_from_dict(data):
                  coatings=tuple(Coating(**c) for c in data["coatings"]),
                  load=Load(**data["load"]), symmetric=data["symmetric"],
                  contact_zone=data.get("contact_zone"),
+                 axisymmetric=data.get("axisymmetric", False),
                  units=Units(**data.get("units", {})))     # older summaries: b and E
 

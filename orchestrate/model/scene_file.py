@@ -3,6 +3,7 @@
 A scene file has the tables of orchestrate/model/scene.py (docs/reference.md, "Scene files"):
 
     symmetric = true
+    axisymmetric = false           # optional: bodies of revolution, their meridian section
     contact_zone = [0.0, 2.0]      # optional
     [indenter]   radius, profile, face_mesh, width, height, centre, E, nu, rigid
     [base]       shape, width, height, radius, bore, E, nu
@@ -29,14 +30,16 @@ import tomllib
 
 from orchestrate.paths import SCENES_DIR
 from orchestrate.model.scene import (Base, Coating, Indenter, Load, ParameterError, Scene, Settings)
-from orchestrate.model.units import INVERSE_LENGTH, LENGTH, SCENE_KINDS, units_from_table, value_in_units
+from orchestrate.model.units import (INVERSE_LENGTH, LENGTH, SCENE_KINDS, TOTAL_FORCE,
+                                     units_from_table, value_in_units)
 
 LARGEST_FILE = 10_000_000      # bytes of a scene or sweep file (a sweep of 10^5 points
                                # written out takes a few megabytes)
 PAPER_SCENE_FILE = SCENES_DIR / "paper.toml"
 
 _TABLES = {"indenter": Indenter, "base": Base, "coating": Coating, "load": Load}
-_TOP_LEVEL = ("symmetric", "contact_zone", "units", "indenter", "base", "coating", "load",
+_TOP_LEVEL = ("symmetric", "axisymmetric", "contact_zone", "units", "indenter", "base", "coating",
+              "load",
               "settings")
 
 # The paper's scene parameters (METHOD.md) as shorthands: name -> (meaning, dotted keys)
@@ -56,8 +59,10 @@ SHORTHANDS = {
               ("coating.model",)),
     "chi": ("initial gap chi x1^2: a parabolic face of radius 1/(2 chi)", ("indenter.radius",)),
     "stamp": ("Delta, the stamp's descent", ("load.displacement",)),
-    "force": ("total force per unit width on the whole body", ("load.force",)),
+    "force": ("total force on the whole body (per unit width; axisymmetric: a force)",
+              ("load.force",)),
 }
+_TOP_LEVEL_VALUES = ("symmetric", "axisymmetric", "contact_zone")   # not tables
 _PATCH_KEY = re.compile(r"^coating\[(\d+)\]\.(\w+)$")
 
 
@@ -75,16 +80,19 @@ def _check_keys(table, allowed, where, path):
                              where + unknown[0])
 
 
-def _build(cls, table, where, path, units):
+def _build(cls, table, where, path, units, revolution=False):
     _check_keys(table, [f.name for f in fields(cls)], where, path)
-    return cls(**in_units(table, where, units))
+    return cls(**in_units(table, where, units, revolution))
 
 
-def in_units(table, where, units):
+def in_units(table, where, units, revolution=False):
     """A table's values with every value that carries its own unit ("20 um") converted
     into the scene's ``units`` (orchestrate/model/units.py); ``where``: the table's prefix in
-    keys, ``coating[2].``."""
+    keys, ``coating[2].``; ``revolution``: of an axisymmetric scene, whose load.force is
+    a total force."""
     kinds = SCENE_KINDS.get(re.sub(r"\[\d+\]", "", where).rstrip("."), {})
+    if revolution and where == "load.":
+        kinds = {**kinds, "force": TOTAL_FORCE}
     return {name: value_in_units(value, kinds[name], units, where + name) if name in kinds
             else value for name, value in table.items()}
 
@@ -110,10 +118,12 @@ def scene_from_table(data, path=None):
         scene = Scene(
             indenter=_build(Indenter, data["indenter"], "indenter.", path, units),
             base=_build(Base, data["base"], "base.", path, units),
-            coatings=tuple(_build(Coating, c, f"coating[{i}].", path, units)
-                           for i, c in enumerate(coatings, start=1)),
-            load=_build(Load, data["load"], "load.", path, units),
+            coatings=tuple(_build(Coating, _with_default_model(c, data), f"coating[{i}].",
+                                  path, units) for i, c in enumerate(coatings, start=1)),
+            load=_build(Load, data["load"], "load.", path, units,
+                        data.get("axisymmetric") is True),
             symmetric=data.get("symmetric", True),
+            axisymmetric=data.get("axisymmetric", False),
             contact_zone=_zone_in_units(data.get("contact_zone"), units),
             units=units)
     except ParameterError as error:
@@ -125,6 +135,14 @@ def scene_from_table(data, path=None):
     settings = data.get("settings", {})
     _check_keys(settings, [f.name for f in fields(Settings)], "settings.", path)
     return scene, settings
+
+
+def _with_default_model(table, data):
+    """A patch's table; on an axisymmetric scene without a model, the 2D coating's (its
+    one model: the shell of revolution is not in the tool yet)."""
+    if data.get("axisymmetric") is True and isinstance(table, dict) and "model" not in table:
+        return {**table, "model": "elastic"}
+    return table
 
 
 def read_toml(path, what):
@@ -183,7 +201,7 @@ def paper_scene(**shorthands):
 def is_scene_key(name):
     """Whether a flag or sweep key names a scene value (not a solver setting); a dotted
     key must name a field of its table."""
-    if name in SHORTHANDS or name in ("symmetric", "contact_zone"):
+    if name in SHORTHANDS or name in _TOP_LEVEL_VALUES:
         return True
     match = _PATCH_KEY.match(name)
     table, _, field = ("coating", None, match.group(2)) if match else name.partition(".")
@@ -195,7 +213,7 @@ def _set(scene, key, value):
     ("20 um") is converted into the scene's units."""
     if key == "contact_zone":
         value = _zone_in_units(value, scene.units)
-    if key in ("symmetric", "contact_zone"):
+    if key in _TOP_LEVEL_VALUES:
         return _copy(scene, **{key: value})
     match = _PATCH_KEY.match(key)
     if match:
@@ -212,7 +230,7 @@ def _set(scene, key, value):
     if table not in _TABLES or not name:
         raise ParameterError(f"unknown scene key {key!r}", key)
     _field_exists(_TABLES[table], name, key)
-    value = in_units({name: value}, f"{table}.", scene.units)[name]
+    value = in_units({name: value}, f"{table}.", scene.units, scene.axisymmetric)[name]
     if table == "coating":
         if not scene.coatings:
             raise ParameterError(f"{key}: the scene has no coating", key)

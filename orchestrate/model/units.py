@@ -32,6 +32,8 @@ from orchestrate.errors import ParameterError
 
 LENGTH, STRESS, FORCE, MOMENT = "length", "stress", "force", "moment"
 INVERSE_LENGTH = "inverse length"      # the paper's chi, the face's curvature x^2 factor
+TOTAL_FORCE = "total force"            # an axisymmetric scene's load.force, given; its
+                                       # outputs are of kind FORCE (Scales.revolution)
 NUMBER, SECONDS, DEGREES, INDEX = "number", "seconds", "degrees", "index"  # not scaled
 
 # The scene's values by table and field: what is not listed is a number (Poisson ratios,
@@ -92,12 +94,13 @@ _DIMENSIONS = {
     LENGTH: ("[length]", "a length", "mm, um, in"),
     STRESS: ("[mass] / [length] / [time] ** 2", "a stress", "MPa, GPa, psi"),
     FORCE: ("[mass] / [time] ** 2", "a force per unit width", "N/mm, kN/m"),
+    TOTAL_FORCE: ("[mass] * [length] / [time] ** 2", "a force", "N, kN"),
     INVERSE_LENGTH: ("1 / [length]", "an inverse length", "1/mm"),
 }
 _DIMENSION_WORDS = {dimension: words for dimension, words, _ in _DIMENSIONS.values()}
 _DIMENSION_WORDS.update({"dimensionless": "a plain number",
                          "[mass] * [length] / [time] ** 2": "a force, not per unit width "
-                         "(the scene is plane strain)",
+                         "(the scene is plane strain; axisymmetric = true takes a force)",
                          "[length] ** 2": "an area"})
 _registry = None
 
@@ -133,7 +136,8 @@ def _parsed(text, key, kind):
                              f"e.g. \"{_EXAMPLES[kind]}\")", key) from None
 
 
-_EXAMPLES = {LENGTH: "20 um", STRESS: "450 GPa", FORCE: "200 N/mm", INVERSE_LENGTH: "0.01 1/mm"}
+_EXAMPLES = {LENGTH: "20 um", STRESS: "450 GPa", FORCE: "200 N/mm", TOTAL_FORCE: "5 N",
+             INVERSE_LENGTH: "0.01 1/mm"}
 
 
 def check_unit_name(name, kind, key):
@@ -165,6 +169,8 @@ def target_unit(units, kind):
         return f"1 / ({units.length})"
     if kind == FORCE:
         return None if units.stress == "E" else f"({units.stress}) * ({units.length})"
+    if kind == TOTAL_FORCE:
+        return None if units.stress == "E" else f"({units.stress}) * ({units.length}) ** 2"
     raise ValueError(kind)
 
 
@@ -219,12 +225,14 @@ class Units:
     def dimensionless(self):
         return self == Units()
 
-    def names(self):
-        """The unit of each kind of output, as a person writes it."""
+    def names(self, revolution=False):
+        """The unit of each kind of output, as a person writes it; ``revolution``: of
+        an axisymmetric scene, whose forces are total forces."""
         length, stress = self.length, self.stress
         force = "E b" if self.dimensionless else f"{stress} {length}"
         moment = "E b^2" if self.dimensionless else f"{stress} {length}^2"
-        return {LENGTH: length, STRESS: stress, FORCE: f"{force} (per unit width)",
+        return {LENGTH: length, STRESS: stress,
+                FORCE: moment if revolution else f"{force} (per unit width)",
                 MOMENT: f"{moment} (per unit width)", NUMBER: "1", SECONDS: "s",
                 DEGREES: "degree", INDEX: "row of NAME.csv"}
 
@@ -254,13 +262,16 @@ def units_from_table(table, path=None):
 
 @dataclass(frozen=True)
 class Scales:
-    """What one unit of the solver is in the scene's units: b (length) and E (stress)."""
+    """What one unit of the solver is in the scene's units: b (length) and E (stress);
+    ``revolution``: an axisymmetric scene's, whose forces are total forces (E b^2)."""
 
     length: float = 1.0
     stress: float = 1.0
+    revolution: bool = False
 
     def of(self, kind):
-        return {LENGTH: self.length, STRESS: self.stress, FORCE: self.stress * self.length,
+        force = self.stress * self.length ** (2 if self.revolution else 1)
+        return {LENGTH: self.length, STRESS: self.stress, FORCE: force,
                 MOMENT: self.stress * self.length ** 2}.get(kind, 1.0)
 
 
@@ -268,8 +279,8 @@ def dimensionless(scene):
     """(the scene in b and E, Scales back to its units). A scene in b and E is returned
     as it is: nothing is scaled, not even by a rounding."""
     if scene.units.dimensionless:
-        return scene, Scales()
-    scales = Scales(scene.units.b, scene.modulus)
+        return scene, Scales(revolution=scene.axisymmetric)
+    scales = Scales(scene.units.b, scene.modulus, scene.axisymmetric)
 
     def part(value, table):
         changes = {}

@@ -11,9 +11,9 @@ import tempfile
 import numpy as np
 
 from orchestrate.workers import freefem
-from orchestrate.ddm.contact import bond_traction, contact_stress
+from orchestrate.ddm.contact import bond_traction, contact_stress, limits_on_axis
 from orchestrate.workers.problem_file import write_problem
-from orchestrate.workers.subdomains import write_inputs
+from orchestrate.workers.subdomains import geometry_arguments, write_inputs
 from orchestrate.run.plan import prepare
 
 
@@ -24,7 +24,8 @@ def solve_monolithic(problem, workdir):
     problem_file = os.path.join(workdir, "problem.txt")
     output = os.path.join(workdir, "monolithic_traces.txt")
     write_problem(problem, files, problem_file)
-    freefem.run_script("monolithic.edp", ["-problem", problem_file, "-output", output],
+    freefem.run_script("monolithic.edp", ["-problem", problem_file, "-output", output,
+                                          *geometry_arguments(problem.scene)],
                        os.path.join(workdir, "monolithic.log"))
     tokens = open(output).read().split()
     traces, k = {}, 0
@@ -54,6 +55,7 @@ def interface_stresses(problem, traces):
             stresses[i] = contact_stress(interface.gap, a, b, theta)
         else:
             stresses[i] = bond_traction(a, b, theta)
+        stresses[i] = limits_on_axis(interface, stresses[i])
     return stresses
 
 

@@ -52,7 +52,7 @@ def in_units(columns, file, scales):
 
 def mesh_in_units(mesh, file, scales):
     """A meshio mesh in b and E in the scene's units: its points and every field by kind."""
-    if scales == Scales():
+    if scales.length == 1.0 and scales.stress == 1.0:
         return mesh
     return meshio.Mesh(mesh.points * scales.length, mesh.cells,
                        point_data={field: np.asarray(data) * scales.of(kind_of(field, file))
@@ -178,7 +178,7 @@ class RunFiles:
         """summary.json, last, with its "units" entry: the unit of each kind, what b and
         E are in the scene's ``units``, and the unit of every column of every CSV file.
         ``summary``: in the scene's units already (units.scaled_summary)."""
-        names = units.names()
+        names = units.names(self.scales.revolution)
         scale = {} if units.dimensionless else {
             "b": f"{self.scales.length!r} {units.length}",
             "E": f"{self.scales.stress!r} {units.stress}"}

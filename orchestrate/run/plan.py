@@ -50,6 +50,8 @@ def choose_models(scene, settings, a=None):
     if not auto:
         return scene, None
     tolerance = settings.model_tolerance
+    if scene.axisymmetric:
+        return _revolution_models(scene, auto, tolerance)
     a = contact_half_width(scene) if a is None else a
     # while a patch is decided, the other undecided ones are shells (the cheapest)
     models = [("shell" if c.model == AUTO else c.model) for c in scene.coatings]
@@ -74,6 +76,16 @@ def choose_models(scene, settings, a=None):
     report = {"tolerance": tolerance, "contact_half_width_estimate": a,
               "patches": patches}
     return scene.with_models(models), report
+
+
+def _revolution_models(scene, auto, tolerance):
+    """An axisymmetric scene's "auto" patches: the 2D coating, its one model (the shell
+    of revolution is not in the tool yet), no error estimated."""
+    reason = "axisymmetric scene: the 2D coating is its only model"
+    patches = [{"patch": n + 1, "model": "elastic", "estimated_error": None,
+                "not_estimated": reason} for n in auto]
+    models = ["elastic" if c.model == AUTO else c.model for c in scene.coatings]
+    return scene.with_models(models), {"tolerance": tolerance, "patches": patches}
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ import time
 
 import numpy as np
 
-from orchestrate.ddm.contact import contact_half_width, contact_zones
+from orchestrate.ddm.contact import contact_half_width, contact_zones, limits_on_axis
 from orchestrate.ddm.robin import run_robin_loop
 from orchestrate.ddm.state import StateLayout
 from orchestrate.errors import RunFailed, WarnedBeforeWork  # noqa: F401  (callers import them here)
@@ -239,7 +239,9 @@ def interface_stresses(layout, state, psi):
             stresses[i] = np.where(psi_of[i] > 0, 0.5 * (t_a + t_b), 0.0)
         else:
             stresses[i] = 0.5 * (t_b - t_a)
+        stresses[i] = limits_on_axis(interface, stresses[i])
     return stresses
+
 
 
 def _write_results(problem, loop, outputs, run_files):
@@ -308,7 +310,7 @@ def _write_results(problem, loop, outputs, run_files):
         "elements_across_contact": [across for across, _ in
                                     elements_across(x_contact, scene.symmetric, zones)],
         "descent": loop.descent,
-        "total_force": (2.0 if scene.symmetric else 1.0) * contact_force,
+        "total_force": (2.0 if scene.symmetric and not scene.axisymmetric else 1.0) * contact_force,
         "interfaces": per_interface,
         # the faces' normals over the contact: the pairing assumes them opposite
         "normal_mismatch_deg": math.degrees(max(

@@ -29,8 +29,10 @@ def _model_choice_columns(choice):
     the largest estimated model error among them."""
     if not choice:
         return {"model_chosen": None, "model_error_estimate": None}
+    estimates = [p["estimated_error"] for p in choice["patches"]
+                 if p["estimated_error"] is not None]
     return {"model_chosen": "/".join(p["model"] for p in choice["patches"]),
-            "model_error_estimate": max(p["estimated_error"] for p in choice["patches"])}
+            "model_error_estimate": max(estimates, default=None)}
 
 
 def gather(sweep_dir, runs):

@@ -107,6 +107,12 @@ def worker_arguments(subdomain, files):
             "-sides", files["sides"]]
 
 
+def geometry_arguments(scene):
+    """The bodies' geometry for every script that builds one (freefem/elasticity.idp):
+    none for plane strain, -axisymmetric 1 for bodies of revolution."""
+    return ["-axisymmetric", 1] if scene.axisymmetric else []
+
+
 def load_arguments(problem):
     """The stamp's load for the indenter's worker: its descent, or its force."""
     scene = problem.scene
@@ -162,7 +168,7 @@ class Subdomains:
         for name, names in self.parts.items():
             subdomain = problem.subdomains[name] if names == (name,) else None
             script = SCRIPTS[subdomain.kind if subdomain else "coated_base"]
-            arguments = worker_arguments(subdomain, files[name])
+            arguments = worker_arguments(subdomain, files[name]) + geometry_arguments(problem.scene)
             if subdomain and subdomain.stamp:
                 arguments += load_arguments(problem)
             self.specs[name] = (script, arguments)

@@ -76,6 +76,14 @@ CASES = {
     "coated roller, stretch shell": (_file("roller", model="stretch_shell"), TIGHT),
     "three patches, shell and 2D": (_file("discrete", **{"coating[2].model": "elastic"}), TIGHT),
     "full model, off-centre": (_off_centre_full_model(), TIGHT),
+    # bodies of revolution: the forms and interfaces weighted by 2 pi r, the hoop strain
+    "sphere on a coated disc, 2D coating": (_file("sphere"), TIGHT),
+    "rigid sphere on a coated ring, iterated inside the base's worker": (
+        _file("sphere", **{"indenter.rigid": True, "coating[1].start": 0.5}),
+        Settings(eps_u=1e-8, inner_solve="iterate", bonds="inside")),
+    "sphere under a descent, iterated, bond exchanged": (
+        _file("sphere", stamp=0.04), Settings(eps_u=1e-10, inner_solve="iterate",
+                                              bonds="exchanged")),
     # contrast: each side's gamma from its neighbour, the soft side's inactive points
     # released (ddm/robin_parameters.py: the coated base's matrix changed at the contact
     # set's changed points by a low-rank update, freefem/robin.idp), iterated (the bond
