@@ -10,6 +10,9 @@
 #                   on 36 held-out scenes (results/adequacy/)
 #   make gallery    the engineers' scenes against the monolithic solve (results/gallery.md)
 #   make iterations iterations per contact set against the mesh level (results/iterations.md)
+#   make indentation  a ball on coated steel: indentation curves and stresses
+#                   (results/indentation.md), and spheres against Hertz and a coated
+#                   half-space reference (results/sphere_layered.md)
 # Both install what they need first (FreeFEM from Debian, a pinned Python venv). Every
 # study writes a report beside its tables (results/*.md: what it measured, computed).
 
@@ -17,7 +20,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations indentation
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -116,6 +119,13 @@ stability: setup
 # and the answers' distance from the monolithic ones (results/gallery.csv, gallery.md).
 gallery: setup
 	$(PYTHON) -m studies.gallery
+
+# Spherical indentation (axisymmetric scenes): a rigid ball on coated steel, its force
+# stepped (results/indentation.csv, .md), and rigid spheres against Hertz and against an
+# independent coated half-space solution (results/sphere_layered.csv, .md).
+indentation: setup
+	$(PYTHON) -m studies.indentation
+	$(PYTHON) -m studies.sphere_layered
 
 # Iterations per contact set of the gallery's scenes at mesh levels 1-3, the coatings
 # inside the base's worker and exchanged across their bonds (results/iterations.md)

@@ -2,7 +2,8 @@
 
 Subdomains: the indenter and the base (P2 elastic bodies meshed by gmsh; a rigid
 indenter has one unknown and no mesh), and one per coating patch (a shell on its
-mid-line, or a P2 body on a structured mesh). Interfaces:
+mid-line, of revolution in an axisymmetric scene, or a P2 body on a structured mesh).
+Interfaces:
 
     bond-coatingI     patch I's bottom bonded to the base (side A: the patch, side B:
                       the base), two components: tangential and normal displacement;
@@ -19,9 +20,9 @@ products, were tried first: they constrain more points per element than a P2 tra
 nodes, and the contact pressure oscillated near the edge of the contact zone; at the
 nodes it is smooth and the contact set settles in fewer updates.) Each side evaluates its trace
 at its own place for each point: a body at the point of its (polygonal) mesh, a shell
-at the arc length xi along its mid-line; a contact trace is the displacement along the
-side's outward normal (towards the other body), a bond trace the tangential and normal
-components in the face's basis (t, n).
+at its mid-line's xi (ShellSpec: an arc length, or a shell of revolution's radius); a
+contact trace is the displacement along the side's outward normal (towards the other
+body), a bond trace the tangential and normal components in the face's basis (t, n).
 
 Elements along the faces have the length Settings.element_size / mesh_level; where
 that is not given, it is sized to the contact (Settings.sized_to: contact_elements across
@@ -61,7 +62,7 @@ class Side:
 
     body:  ``place`` (n, 2) points of its mesh; ``coefficients`` one (n, 2) array per
            component: trace = c1 u1 + c2 u2 there.
-    shell: ``place`` (n,) arc lengths xi along its mid-line; ``coefficients`` one (n, 3)
+    shell: ``place`` (n,) its mid-line's xi (ShellSpec); ``coefficients`` one (n, 3)
            array per component: trace = cV v + cW w + cG gamma there, or (n, 4) with
            + cE epsilon for a shell with thickness stretch."""
     subdomain: str
@@ -108,9 +109,12 @@ class CoatingPlan:
 
 @dataclass(frozen=True)
 class ShellSpec:
-    """A coating patch as a shell on its mid-line: nodes xi (arc length from its start),
-    constant curvature, with or without thickness stretch (the fibre's transverse strain
-    epsilon), its start on the symmetry axis of a half model or free."""
+    """A coating patch as a shell on its mid-line: nodes xi, constant curvature, with or
+    without thickness stretch (the fibre's transverse strain epsilon), its start on the
+    symmetry axis of a half model or free. In a plane scene a Timoshenko-type shell, xi
+    the arc length from its start; in an axisymmetric one a shell of revolution with a
+    flat mid-line, a disc or a ring (freefem/shell_revolution.idp), xi the radius r, which
+    its hoop strains u/r need (``revolution``)."""
     nodes: np.ndarray
     curvature: float
     thickness: float
@@ -118,8 +122,10 @@ class ShellSpec:
     thickness_stretch: bool
     symmetric_start: bool
     face: object
-    s_start: float             # arc length on the base's face of the patch's start
+    s_start: float             # arc length on the base's face where xi = 0: the patch's
+                               # start, or the axis for a shell of revolution
     stretch: float             # mid-line length per unit base-face length
+    revolution: bool           # a shell of revolution (the scene is axisymmetric)
 
 
 @dataclass(frozen=True)
@@ -382,7 +388,8 @@ def discretize(scene, settings):
         if number is not None and scene.coatings[number - 1].model in SHELL_MODELS:
             coating = scene.coatings[number - 1]
             spec_stretch = face.stretch(0.5 * coating.thickness)
-            partner_side = Side(partner, (s - nodes[0]) * spec_stretch, (  # the top face's w
+            xi = (s - _xi_origin(scene, nodes)) * spec_stretch
+            partner_side = Side(partner, xi, (  # the top face's w
                 _shell_coefficients(len(s), coating, 0.0, 1.0, 0.0, 0.5),))
         else:
             partner_side = Side(partner, chord_points(position), (normal.copy(),))
@@ -402,12 +409,13 @@ def discretize(scene, settings):
         on_axis = scene.symmetric and nodes[0] == 0.0
         if coating.model in SHELL_MODELS:
             stretch = face.stretch(0.5 * coating.thickness)
-            spec = ShellSpec((nodes - nodes[0]) * stretch, face.curvature / stretch,
+            origin = _xi_origin(scene, nodes)
+            spec = ShellSpec((nodes - origin) * stretch, face.curvature / stretch,
                              coating.thickness, coating.shear_factor,
                              coating.model == "stretch_shell", on_axis, face,
-                             float(nodes[0]), stretch)
+                             float(origin), stretch, scene.axisymmetric)
             n = len(s)
-            coating_side = Side(name, (s - nodes[0]) * stretch, (   # the bottom face's v, w
+            coating_side = Side(name, (s - origin) * stretch, (   # the bottom face's v, w
                 _shell_coefficients(n, coating, 1.0, 0.0, -0.5 * coating.thickness, 0.0),
                 _shell_coefficients(n, coating, 0.0, 1.0, 0.0, -0.5)))
             subdomains[name] = Subdomain(name, "shell", coating.E, coating.nu, spec,
@@ -449,10 +457,18 @@ def discretize(scene, settings):
                    settings.theta / scene.modulus, settings.robin_parameter * scene.modulus)
 
 
+def _xi_origin(scene, nodes):
+    """The arc length on the base's face where a shell's xi is 0: its start (``nodes``:
+    its element ends), or in an axisymmetric scene the axis, so that xi is the radius."""
+    return 0.0 if scene.axisymmetric else nodes[0]
+
+
 def _shell_coefficients(n, coating, c_v, c_w, c_gamma, face):
     """Trace coefficients of a shell's face at n points: cV v + cW w + cG gamma, and with
     thickness stretch + cE epsilon, cE = face h2 c_w (face = +1/2 top, -1/2 bottom): the
-    face xi3 = face h2 moves along the normal by w + xi3 epsilon."""
+    face xi3 = face h2 moves along the normal by w + xi3 epsilon. A shell of revolution's
+    are the same with u, beta in the places of v, gamma: its fibre at height z moves by
+    (u + z beta) e_r + (w + z epsilon) e_z, e_r and e_z the flat face's t and n."""
     row = [c_v, c_w, c_gamma]
     if coating.model == "stretch_shell":
         row.append(face * coating.thickness * c_w)

@@ -8,7 +8,8 @@ A scene is an indenter pressed on a base that carries any number of coating patc
     Base      the lower body: a block with a flat top, clamped at its bottom, or a roller
               (a disk on a rigid shaft, clamped at its bore)
     Coating   a patch on the base's top face, between two abscissae x1, modelled as a
-              Timoshenko-type shell or as a 2D elastic body
+              Timoshenko-type shell (a shell of revolution in an axisymmetric scene) or
+              as a 2D elastic body
     Load      the stamp's descent, or the total force per unit width
 
 Lengths are in units of b and moduli in units of E (METHOD.md); the scene files of
@@ -27,7 +28,6 @@ from orchestrate.model.units import Units
 
 MODELS = ("shell", "stretch_shell", "elastic")
 SHELL_MODELS = ("shell", "stretch_shell")   # the coating on its mid-line
-REVOLUTION_MODELS = ("elastic", "auto")   # the coating models of an axisymmetric scene
 MODEL_CHOICES = MODELS + ("auto",)            # auto: chosen per patch (run/plan.py)
 THETA_RANGE = (1e-6, 1.0)      # the penalty, b/E
 ROBIN_RANGE = (1e-3, 1e3)      # the Robin parameter, E/b
@@ -255,9 +255,11 @@ class Coating:
     thickness: float = 0.125
     E: float = 1.0
     nu: float = 0.3
-    model: str = "shell"           # "shell" (Timoshenko-type, the paper's), "stretch_shell"
-                                   # (the same with thickness stretch), "elastic" (2D) or
-                                   # "auto" (chosen per scene: orchestrate/run/plan.py)
+    model: str = "shell"           # "shell" (Timoshenko-type, the paper's; in an
+                                   # axisymmetric scene a Mindlin shell of revolution),
+                                   # "stretch_shell" (the same with thickness stretch),
+                                   # "elastic" (2D) or "auto" (chosen per scene:
+                                   # orchestrate/run/plan.py)
     shear_factor: float = 5.0 / 6.0  # k' of the shell
 
     def check(self, prefix):
@@ -306,7 +308,8 @@ class Scene:
     ``axisymmetric``: the bodies are bodies of revolution about x1 = 0 and the scene
     their meridian section, (x1, x2) = (r, z): a sphere (circle profile) or a
     paraboloid or a flat punch on a cylinder of radius base.width, coating patches are
-    rings [start, end] in r (from 0: a disc), the load a total force (E b^2).
+    rings [start, end] in r (from 0: a disc; a shell model is a shell of revolution),
+    the load a total force (E b^2).
     ``contact_zone``: the x1 range where the indenter may touch the coatings or the
     bare base (default: wherever its face is over the base); a run whose contact
     reaches an end of it that is not the end of a face fails."""
@@ -474,10 +477,6 @@ class Scene:
             _require(coating.start >= 0, key + "start",
                      f"{key}start = {coating.start!r}: a ring of an axisymmetric scene lies "
                      "at r >= 0 (a patch from 0 is a disc)")
-            _require(coating.model in REVOLUTION_MODELS, key + "model",
-                     f"{key}model = {coating.model!r} with axisymmetric = true: a coating "
-                     "of revolution is a 2D body (elastic; auto chooses it); the shell of "
-                     "revolution is not in the tool yet")
 
     @property
     def modulus(self):

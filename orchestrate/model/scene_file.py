@@ -138,8 +138,9 @@ def scene_from_table(data, path=None):
 
 
 def _with_default_model(table, data):
-    """A patch's table; on an axisymmetric scene without a model, the 2D coating's (its
-    one model: the shell of revolution is not in the tool yet)."""
+    """A patch's table; on an axisymmetric scene without a model, the 2D coating's (what
+    "auto" chooses there: the shells of revolution have no error estimate yet,
+    run/plan.py)."""
     if data.get("axisymmetric") is True and isinstance(table, dict) and "model" not in table:
         return {**table, "model": "elastic"}
     return table

@@ -31,6 +31,8 @@ import math
 from orchestrate.errors import ParameterError
 
 LENGTH, STRESS, FORCE, MOMENT = "length", "stress", "force", "moment"
+LINE_FORCE = "line force"              # a shell of revolution's forces, per unit length of a
+                                       # circle (its moments: MOMENT)
 INVERSE_LENGTH = "inverse length"      # the paper's chi, the face's curvature x^2 factor
 TOTAL_FORCE = "total force"            # an axisymmetric scene's load.force, given; its
                                        # outputs are of kind FORCE (Scales.revolution)
@@ -50,7 +52,8 @@ SCENE_KINDS = {
 KINDS = {
     # positions and displacements
     "x1": LENGTH, "x2": LENGTH, "s": LENGTH, "xi": LENGTH, "u1": LENGTH, "u2": LENGTH,
-    "v": LENGTH, "w": LENGTH, "a_t": LENGTH, "a_n": LENGTH, "b_t": LENGTH, "b_n": LENGTH,
+    "u": LENGTH, "v": LENGTH, "w": LENGTH, "a_t": LENGTH, "a_n": LENGTH, "b_t": LENGTH,
+    "b_n": LENGTH,
     "displacement": LENGTH, "descent": LENGTH, "contact_half_width": LENGTH,
     "contact_half_width_estimate": LENGTH, "contact_zones": LENGTH,
     "interface_element_size": LENGTH, "interface_element_size_far": LENGTH,
@@ -58,15 +61,20 @@ KINDS = {
     "sigma_n": STRESS, "sigma_t": STRESS, "sigma_eq": STRESS, "s11": STRESS, "s22": STRESS,
     "s12": STRESS, "s33": STRESS, "stress": STRESS, "sigma11_top": STRESS,
     "sigma11_bottom": STRESS, "sigma13_mean": STRESS, "value": STRESS,
+    "sigma_r_top": STRESS, "sigma_r_bottom": STRESS, "sigma_theta_top": STRESS,
+    "sigma_theta_bottom": STRESS, "sigma_rz_mean": STRESS,
     "peak_contact_stress": STRESS, "peak_interface_stress": STRESS,
     "peak_normal_stress": STRESS,
     # forces per unit width (the shell's forces too), moments per unit width
     "T11": FORCE, "T13": FORCE, "T33": FORCE, "force": FORCE, "contact_force": FORCE,
     "interface_force": FORCE, "stamp_reaction": FORCE, "base_reaction": FORCE,
     "total_force": FORCE, "M11": MOMENT,
+    # a shell of revolution's forces and moments per unit length of a circle
+    "N_r": LINE_FORCE, "N_theta": LINE_FORCE, "Q": LINE_FORCE, "N_z": LINE_FORCE,
+    "M_r": MOMENT, "M_theta": MOMENT,
     # numbers: rotations, strains, counts, relative errors, angles; times; node indices
     **{name: NUMBER for name in (
-        "gamma", "epsilon", "iteration", "relative_change", "displacement_change",
+        "gamma", "beta", "epsilon", "iteration", "relative_change", "displacement_change",
         "traction_change", "traction_component_change", "error_estimate", "active_points",
         "active_set_changed", "active_set_update", "direct", "iterations", "final_relative_change",
         "active_set_changes", "tolerance", "patch", "estimated_error",
@@ -227,13 +235,15 @@ class Units:
 
     def names(self, revolution=False):
         """The unit of each kind of output, as a person writes it; ``revolution``: of
-        an axisymmetric scene, whose forces are total forces."""
+        an axisymmetric scene, whose forces are total forces and whose shells' moments
+        are per unit length of a circle."""
         length, stress = self.length, self.stress
         force = "E b" if self.dimensionless else f"{stress} {length}"
         moment = "E b^2" if self.dimensionless else f"{stress} {length}^2"
         return {LENGTH: length, STRESS: stress,
                 FORCE: moment if revolution else f"{force} (per unit width)",
-                MOMENT: f"{moment} (per unit width)", NUMBER: "1", SECONDS: "s",
+                MOMENT: f"{moment} (per unit {'length' if revolution else 'width'})",
+                LINE_FORCE: f"{force} (per unit length)", NUMBER: "1", SECONDS: "s",
                 DEGREES: "degree", INDEX: "row of NAME.csv"}
 
 
@@ -272,6 +282,7 @@ class Scales:
     def of(self, kind):
         force = self.stress * self.length ** (2 if self.revolution else 1)
         return {LENGTH: self.length, STRESS: self.stress, FORCE: force,
+                LINE_FORCE: self.stress * self.length,
                 MOMENT: self.stress * self.length ** 2}.get(kind, 1.0)
 
 

@@ -5,7 +5,8 @@
                 compressive one and the largest shear, each with its position
     coatings    per patch: the largest von Mises stress and its position (2D model);
                 the fibre stresses at the top and bottom faces and the mean shear from
-                the shell's forces (shell models)
+                the shell's forces (shell models; a shell of revolution's radial and
+                hoop fibre stresses)
 
 Where a bonded coating ends, the elastic solution is singular (a bi-material wedge): the
 stresses there grow as the mesh refines and have no converged value. Every maximum is
@@ -110,14 +111,43 @@ def fibre_stresses(fields, thickness):
     return membrane + bending, membrane - bending, np.asarray(fields["T13"]) / thickness
 
 
+def revolution_fibre_stresses(fields, thickness):
+    """A shell of revolution's fibre stresses from its forces per unit length of a circle
+    (freefem/shell_revolution.idp: the radial and hoop strains are eps + z kappa through
+    the thickness, z along the face's outward normal e_z): the radial stress at the top
+    (z = +h/2) and bottom faces, N_r/h +- 6 M_r/h^2, the hoop stress there,
+    N_theta/h +- 6 M_theta/h^2, and the mean transverse shear Q/h (columns by name)."""
+    def faces(force, moment):
+        membrane = np.asarray(fields[force]) / thickness
+        bending = 6.0 * np.asarray(fields[moment]) / thickness ** 2
+        return membrane + bending, membrane - bending
+    return (*faces("N_r", "M_r"), *faces("N_theta", "M_theta"),
+            np.asarray(fields["Q"]) / thickness)
+
+
+def _faces(name, top, bottom):
+    """The largest tension and compression on the top and bottom faces, named after
+    ``name`` (a prefix)."""
+    return [(f"{name}top_tension", top, TENSION), (f"{name}top_compression", top, COMPRESSION),
+            (f"{name}bottom_tension", bottom, TENSION),
+            (f"{name}bottom_compression", bottom, COMPRESSION)]
+
+
 def shell_answers(scene, coating, fields):
     """The extreme fibre stresses (tension and compression, top and bottom faces) and the
-    largest mean shear of a shell patch, from its fields (columns x1, x2, T11, T13, M11)."""
-    top, bottom, shear = fibre_stresses(fields, coating.thickness)
-    return _maxima(scene, [("top_tension", top, TENSION), ("top_compression", top, COMPRESSION),
-                           ("bottom_tension", bottom, TENSION),
-                           ("bottom_compression", bottom, COMPRESSION),
-                           ("mean_shear", np.abs(shear), MAGNITUDE)],
+    largest mean shear of a shell patch, from its fields (columns x1, x2, T11, T13, M11);
+    of a shell of revolution (an axisymmetric scene) the radial and the hoop fibre
+    stresses ("radial_top_tension", "hoop_top_tension", ...) and the mean shear, from
+    N_r, N_theta, Q, M_r, M_theta."""
+    if scene.axisymmetric:
+        radial_top, radial_bottom, hoop_top, hoop_bottom, shear = revolution_fibre_stresses(
+            fields, coating.thickness)
+        faces = (_faces("radial_", radial_top, radial_bottom)
+                 + _faces("hoop_", hoop_top, hoop_bottom))
+    else:
+        top, bottom, shear = fibre_stresses(fields, coating.thickness)
+        faces = _faces("", top, bottom)
+    return _maxima(scene, faces + [("mean_shear", np.abs(shear), MAGNITUDE)],
                    fields["x1"], fields["x2"])
 
 

@@ -7,7 +7,8 @@ orchestrate/model/units.py's kind_of) and written whole into the run's scratch f
 (orchestrate/run/solve.py), and each subdomain's fields as its worker sent them
 (orchestrate/workers/exchange.py's BodyOutput, ShellOutput): a body's nodal table, its
 cells, its reactions and its VTU; a shell's table along its mid-line (with the
-mid-line's place x1, x2) and its VTU with the fibre stresses; run.pvd; summary.json
+mid-line's place x1, x2) and its VTU with the fibre stresses (a shell of revolution's
+radial and hoop ones); run.pvd; summary.json
 last. The tables stay in memory, in the scene's units, for the Python API's Result
 (orchestrate/run/api.py), and so, when asked, do the files' bytes.
 """
@@ -20,16 +21,18 @@ import numpy as np
 
 from orchestrate.files.writing import csv_bytes, vtu_bytes, write_bytes
 from orchestrate.model.units import FORCE, Scales, kind_of
-from orchestrate.run.answers import fibre_stresses
+from orchestrate.run.answers import fibre_stresses, revolution_fibre_stresses
 from orchestrate.run.paraview import RUN_COLLECTION, collection_text
-from orchestrate.workers.exchange import CELL_NODES, SHELL_COLUMNS
+from orchestrate.workers.exchange import CELL_NODES, REVOLUTION_SHELL_COLUMNS, SHELL_COLUMNS
 
 # The stress components of a body's nodal table (and VTU), after x1, x2, u1, u2, sigma_eq
 # (exchange.py's BODY_COLUMNS)
 STRESS_COMPONENTS = ("s11", "s22", "s12", "s33")
 CELL_COLUMNS = tuple(f"n{corner}" for corner in range(CELL_NODES))  # rows of NAME.csv
-# A shell's columns its VTU holds as they are (besides its place and displacement)
+# A shell's columns its VTU holds as they are (besides its place and displacement); a
+# shell of revolution's
 SHELL_VTU_FIELDS = ("gamma", "epsilon", "T11", "T13", "M11", "T33")
+REVOLUTION_VTU_FIELDS = ("beta", "epsilon", "N_r", "N_theta", "Q", "M_r", "M_theta", "N_z")
 SUMMARY = "summary.json"
 
 
@@ -85,12 +88,14 @@ def body_mesh(columns, cells):
 
 
 def shell_table(columns, spec):
-    """A shell's fields along its mid-line (SHELL_COLUMNS) with the mid-line's place
-    x1, x2 after xi (``spec``: its ShellSpec, orchestrate/mesh/discretization.py)."""
+    """A shell's fields along its mid-line (SHELL_COLUMNS, a shell of revolution's
+    REVOLUTION_SHELL_COLUMNS) with the mid-line's place x1, x2 after xi (``spec``: its
+    ShellSpec, orchestrate/mesh/discretization.py)."""
     s = spec.s_start + np.asarray(columns["xi"]) / spec.stretch
     place = spec.face.point(s, 0.5 * spec.thickness)
     table = {"xi": columns["xi"], "x1": place[:, 0], "x2": place[:, 1]}
-    table.update((name, columns[name]) for name in SHELL_COLUMNS if name != "xi")
+    names = REVOLUTION_SHELL_COLUMNS if spec.revolution else SHELL_COLUMNS
+    table.update((name, columns[name]) for name in names if name != "xi")
     return table
 
 
@@ -100,21 +105,34 @@ def shell_mesh(table, spec):
     forces and the fibre stresses: sigma11_top, sigma11_bottom = T11/h2 +- 6 M11/h2^2 at
     the top face (the contact side, xi3 = +h2/2 along the face's outward normal: M11 > 0
     stretches it) and the bottom face (the bond), and sigma13_mean = T13/h2
-    (answers.fibre_stresses)."""
+    (answers.fibre_stresses). A shell of revolution's: u e_r + w e_z, beta, epsilon, its
+    forces, the radial and hoop fibre stresses sigma_r_top, sigma_r_bottom,
+    sigma_theta_top, sigma_theta_bottom and sigma_rz_mean = Q/h2
+    (answers.revolution_fibre_stresses)."""
     xi = np.asarray(table["xi"])
     s = spec.s_start + xi / spec.stretch
     tangent, normal = spec.face.tangent(s), spec.face.normal(s)
     zero = np.zeros(len(xi))
-    displacement = (np.asarray(table["v"])[:, None] * tangent
+    along, fields = ("u", REVOLUTION_VTU_FIELDS) if spec.revolution else ("v", SHELL_VTU_FIELDS)
+    displacement = (np.asarray(table[along])[:, None] * tangent
                     + np.asarray(table["w"])[:, None] * normal)
     points = np.column_stack([table["x1"], table["x2"], zero])
     lines = np.column_stack([np.arange(len(xi) - 1), np.arange(1, len(xi))])
     keep = np.diff(xi) > 0       # samples repeat the nodes: skip zero-length cells
     point_data = {"displacement": np.column_stack([displacement, zero])}
-    point_data.update((name, np.asarray(table[name])) for name in SHELL_VTU_FIELDS)
-    top, bottom, shear = fibre_stresses(table, spec.thickness)
-    point_data.update(sigma11_top=top, sigma11_bottom=bottom, sigma13_mean=shear)
+    point_data.update((name, np.asarray(table[name])) for name in fields)
+    point_data.update(_fibre_stress_fields(table, spec))
     return meshio.Mesh(points, [("line", lines[keep])], point_data=point_data)
+
+
+def _fibre_stress_fields(table, spec):
+    """The VTU's fibre stresses of a shell (shell_mesh)."""
+    if spec.revolution:
+        names = ("sigma_r_top", "sigma_r_bottom", "sigma_theta_top", "sigma_theta_bottom",
+                 "sigma_rz_mean")
+        return dict(zip(names, revolution_fibre_stresses(table, spec.thickness)))
+    return dict(zip(("sigma11_top", "sigma11_bottom", "sigma13_mean"),
+                    fibre_stresses(table, spec.thickness)))
 
 
 class RunFiles:

@@ -19,7 +19,9 @@ every column; orchestrate/run/outputs.py):
                    P2 triangles as six node rows each, the consistent reactions on its
                    supports (label, R1, R2), and all of it as quadratic VTU
     coatingI_fields.csv, coatingI.vtu   a shell patch's xi, x1, x2, v, w, gamma, epsilon,
-                   T11, T13, M11, T33 along its mid-line; the VTU adds its fibre stresses
+                   T11, T13, M11, T33 along its mid-line (a shell of revolution's xi = r,
+                   x1, x2, u, w, beta, epsilon, N_r, N_theta, Q, M_r, M_theta, N_z); the
+                   VTU adds its fibre stresses
     run.pvd        opens every VTU of the run together in ParaView
 Numbers that did not converge are never written as results: a run that diverges or
 stagnates writes only history.csv and a summary.json that says why.

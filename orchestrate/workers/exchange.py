@@ -12,7 +12,8 @@ is its record, then the word "end" (worker.py).
     MapReply       the reply to MAP: the Robin-to-trace map (robin_map.py)
     OutputRequest  Command.OUTPUT: the fields, or a body's reactions alone
     BodyOutput     a body's reply to OUTPUT: nodal fields, cells, reactions
-    ShellOutput    a shell's reply to OUTPUT: its fields along the mid-line
+    ShellOutput    a shell's reply to OUTPUT: its fields along the mid-line (a plane
+                   shell's or a shell of revolution's)
     ShellNumbers   a shell's numbers: shell.edp's arguments, monolithic.edp's problem file
 
 Every record has ``encode()`` (its text) and ``decode(numbers, ...)`` (from ``Numbers``,
@@ -276,6 +277,10 @@ BODY_COLUMNS = ("x1", "x2", "u1", "u2", "sigma_eq", "s11", "s22", "s12", "s33")
 CELL_NODES = 6
 # Along a shell's mid-line: arc length, fields and forces (freefem/shell.idp)
 SHELL_COLUMNS = ("xi", "v", "w", "gamma", "epsilon", "T11", "T13", "M11", "T33")
+# Along a shell of revolution's: radius, fields and forces per unit length of a circle
+# (freefem/shell_revolution.idp; N_z is its T33, the normal force through the thickness)
+REVOLUTION_SHELL_COLUMNS = ("xi", "u", "w", "beta", "epsilon", "N_r", "N_theta", "Q", "M_r",
+                            "M_theta", "N_z")
 
 
 @dataclass(frozen=True, eq=False)
@@ -312,19 +317,19 @@ class BodyOutput:
 @dataclass(frozen=True, eq=False)
 class ShellOutput:
     """A shell's reply to Command.OUTPUT: the number of its samples along the mid-line
-    (rows), then SHELL_COLUMNS at every sample, one array each (the ends and inner
-    points of every element: a node appears twice, its forces jump). Without the fields
-    rows is 0."""
-    columns: dict             # name -> (rows,)
+    (rows), then its columns at every sample, one array each (the ends and inner points
+    of every element: a node appears twice, its forces jump): SHELL_COLUMNS, or a shell
+    of revolution's REVOLUTION_SHELL_COLUMNS. Without the fields rows is 0."""
+    columns: dict             # name -> (rows,), in the record's order
 
     def encode(self):
-        return encode(len(self.columns[SHELL_COLUMNS[0]]),
-                      *(self.columns[name] for name in SHELL_COLUMNS))
+        return encode(len(next(iter(self.columns.values()))), *self.columns.values())
 
     @classmethod
-    def decode(cls, numbers):
+    def decode(cls, numbers, names=SHELL_COLUMNS):
+        """``names``: the columns, SHELL_COLUMNS or REVOLUTION_SHELL_COLUMNS."""
         rows = numbers.integer()
-        return cls({name: numbers.array(rows) for name in SHELL_COLUMNS})
+        return cls({name: numbers.array(rows) for name in names})
 
 
 # ---- A shell's numbers ------------------------------------------------------------------

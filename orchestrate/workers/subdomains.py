@@ -1,10 +1,11 @@
 """The subdomain workers of a run and the files they read.
 
 Every body (the indenter, the base, a 2D coating patch) runs freefem/body.edp and every
-shell patch freefem/shell.edp, each on its own mesh or mid-line and sides file; or the
-base and its coatings run one worker together, freefem/coated_base.edp, on their files
-and a problem file (problem_file.py) that bonds them (the run's Strategy.workers says
-which). What they are sent and send back are the records of
+shell patch freefem/shell.edp (a shell of revolution in an axisymmetric scene: every
+script takes the scene's geometry_arguments), each on its own mesh or mid-line and sides
+file; or the base and its coatings run one worker together, freefem/coated_base.edp, on
+their files and a problem file (problem_file.py) that bonds them (the run's
+Strategy.workers says which). What they are sent and send back are the records of
 orchestrate/workers/exchange.py. Within a
 Robin iteration the solves are independent: every request is written before any reply
 is read, so the workers compute at the same time.
@@ -22,9 +23,9 @@ import numpy as np
 
 from orchestrate.errors import system_failure
 from orchestrate.faults import checkpoint
-from orchestrate.workers.exchange import (BodyOutput, Command, OutputRequest, RobinRequest,
-                                          ShellNumbers, ShellOutput, SideArrays, Sides,
-                                          TraceReply)
+from orchestrate.workers.exchange import (REVOLUTION_SHELL_COLUMNS, SHELL_COLUMNS, BodyOutput,
+                                          Command, OutputRequest, RobinRequest, ShellNumbers,
+                                          ShellOutput, SideArrays, Sides, TraceReply)
 from orchestrate.mesh.meshes import coating_mesh, write_body_mesh, write_medit
 from orchestrate.mesh.body_plans import BodyPlan
 from orchestrate.workers.problem_file import write_problem
@@ -108,9 +109,15 @@ def worker_arguments(subdomain, files):
 
 
 def geometry_arguments(scene):
-    """The bodies' geometry for every script that builds one (freefem/elasticity.idp):
-    none for plane strain, -axisymmetric 1 for bodies of revolution."""
+    """The scene's geometry for every script that builds a body or a shell
+    (freefem/elasticity.idp; shell.edp): none for plane strain, -axisymmetric 1 for
+    bodies of revolution and shells of revolution."""
     return ["-axisymmetric", 1] if scene.axisymmetric else []
+
+
+def shell_columns(subdomain):
+    """The columns of a shell's ShellOutput: a plane shell's or a shell of revolution's."""
+    return REVOLUTION_SHELL_COLUMNS if subdomain.plan.revolution else SHELL_COLUMNS
 
 
 def load_arguments(problem):
@@ -365,7 +372,8 @@ class Subdomains:
                                                       "x1": output.columns["x1"] + dx,
                                                       "x2": output.columns["x2"] + dy})
                 else:
-                    output = entry.worker.receive(ShellOutput.decode)
+                    output = entry.worker.receive(ShellOutput.decode,
+                                                  shell_columns(self.problem.subdomains[part]))
                 outputs[part] = output
         return outputs
 

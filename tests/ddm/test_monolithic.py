@@ -5,11 +5,12 @@ freefem/monolithic.edp builds every subdomain with the workers' own includes, co
 them by the penalty on the same interface points and iterates the contact set to a
 fixed point. Run to a tight tolerance, the domain decomposition must give the same
 interface traces and stresses to 1e-6 relative: the test that the Robin data, the trace
-operators (flat and curved, bodies and shells with and without thickness stretch), the active-set logic and the force
-load are right. Both loops are checked on the paper's scene: the accelerated active-set
-loop at the default penalty, and the paper's own loop (gamma = 1/theta, fixed
-relaxation) at a penalty soft enough for it to converge in a few hundred iterations (at
-theta = 1e-3 it would need ~10^5, docs/method.md).
+operators (flat and curved, bodies and shells with and without thickness stretch, plane
+and of revolution), the active-set logic and the force load are right. Both loops are
+checked on the paper's scene: the accelerated active-set loop at the default penalty,
+and the paper's own loop (gamma = 1/theta, fixed relaxation) at a penalty soft enough
+for it to converge in a few hundred iterations (at theta = 1e-3 it would need ~10^5,
+docs/method.md).
 
 Equilibrium (to 1e-5 relative): the contact force, the force on the bonds, the stamp's
 reaction on the indenter and the base's support reaction (consistent nodal reactions)
@@ -84,6 +85,15 @@ CASES = {
     "sphere under a descent, iterated, bond exchanged": (
         _file("sphere", stamp=0.04), Settings(eps_u=1e-10, inner_solve="iterate",
                                               bonds="exchanged")),
+    # shells of revolution (freefem/shell_revolution.idp, its form times 2 pi): a disc,
+    # u = beta = 0 on the axis, with and without thickness stretch; a ring, iterated in
+    # the base's worker (freefem/coated_base.edp builds it with the shell's includes)
+    "sphere on a coated disc, shell of revolution": (_file("sphere", model="shell"), TIGHT),
+    "sphere on a coated disc, stretch shell of revolution": (
+        _file("sphere", model="stretch_shell"), TIGHT),
+    "sphere on a coated ring, shell of revolution, iterated inside the base's worker": (
+        _file("sphere", model="shell", **{"coating[1].start": 0.5}),
+        Settings(eps_u=1e-8, inner_solve="iterate", bonds="inside")),
     # contrast: each side's gamma from its neighbour, the soft side's inactive points
     # released (ddm/robin_parameters.py: the coated base's matrix changed at the contact
     # set's changed points by a low-rank update, freefem/robin.idp), iterated (the bond

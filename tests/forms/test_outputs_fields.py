@@ -12,7 +12,8 @@ E2 = 5E, whose coating is one layer of P2 triangles under the edge of the contac
   top face, whose vertices differ by 0.03e-4 E.
 * ParaView: each body's VTU has quadratic triangles (triangle6) in double precision with
   the displacement, the stress tensor and its components; run.pvd lists every
-  subdomain's VTU; a shell's VTU has the fibre stresses at its faces; a sweep's .pvd
+  subdomain's VTU; a shell's VTU has the fibre stresses at its faces (a shell of
+  revolution's radial and hoop ones); a sweep's .pvd
   lists its runs as time steps.
 * Figures 3-5 draw from a run.
 """
@@ -32,7 +33,7 @@ from orchestrate.files.writing import write_vtu
 from orchestrate.run.outputs import STRESS_COMPONENTS, shell_mesh, shell_table
 from orchestrate.run.paraview import RUN_COLLECTION, write_collection, write_sweep_collection
 from orchestrate.model.scene import Settings
-from orchestrate.model.scene_file import paper_scene
+from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
 from orchestrate.run.solve import solve
 
 BODIES = ("indenter", "base", "coating1")
@@ -243,6 +244,30 @@ def test_a_shell_vtu_has_the_fibre_stresses_of_its_faces(tmp_path):
     assert np.allclose(data["sigma11_top"], membrane + bending, rtol=1e-14, atol=0)
     assert np.allclose(data["sigma11_bottom"], membrane - bending, rtol=1e-14, atol=0)
     assert np.allclose(data["sigma13_mean"], fields.T13 / h2, rtol=1e-14, atol=0)
+
+
+def test_a_shell_of_revolution_vtu_has_its_radial_and_hoop_fibre_stresses(tmp_path):
+    """A shell of revolution (an axisymmetric scene's shell, freefem/shell_revolution.idp):
+    its fibre at height z moves by (u + z beta) e_r, so sigma_r = N_r/h2 + 12 M_r z/h2^3
+    and sigma_theta = N_theta/h2 + 12 M_theta z/h2^3, z = +h2/2 the top face; its mid-line
+    lies at x1 = xi, the radius, and its displacement is u e_r + w e_z."""
+    scene, _ = load_scene(SCENES_DIR / "sphere.toml")
+    spec = discretize(apply_overrides(scene, {"model": "shell"}),
+                      Settings()).subdomains["coating1"].plan
+    h2, xi = spec.thickness, np.linspace(0.0, 3.0, 9)
+    fields = pd.DataFrame({"xi": xi, "u": 1e-3 * xi, "w": -2e-3, "beta": 0.0, "epsilon": 0.0,
+                           "N_r": 1e-4 * (1 + xi), "N_theta": 2e-4 * (1 - xi), "Q": 2e-5 * xi,
+                           "M_r": 3e-6 * (1 - xi), "M_theta": -4e-6 * xi, "N_z": 0.0})
+    table = shell_table(fields, spec)
+    assert np.array_equal(table["x1"], xi) and "N_theta" in table and "T11" not in table
+    write_vtu(tmp_path / "coating1.vtu", shell_mesh(table, spec))
+    data = meshio.read(tmp_path / "coating1.vtu").point_data
+    for name, force, moment in (("sigma_r", "N_r", "M_r"), ("sigma_theta", "N_theta", "M_theta")):
+        membrane, bending = fields[force] / h2, 6 * fields[moment] / h2 ** 2
+        assert np.allclose(data[f"{name}_top"], membrane + bending, rtol=1e-14, atol=0)
+        assert np.allclose(data[f"{name}_bottom"], membrane - bending, rtol=1e-14, atol=0)
+    assert np.allclose(data["sigma_rz_mean"], fields.Q / h2, rtol=1e-14, atol=0)
+    assert np.allclose(data["displacement"][:, :2], np.column_stack([fields.u, fields.w]))
 
 
 def test_a_sweep_pvd_has_one_time_step_per_run_with_its_subdomains(run, tmp_path):
