@@ -87,13 +87,6 @@ def ball_scene(force, coating):
                  load=Load(force=force), axisymmetric=True, units=UNITS)
 
 
-def substrate_peak(result):
-    """(the substrate's largest von Mises stress, its depth below the top face)."""
-    base = result.fields["base"]
-    k = int(np.argmax(base["sigma_eq"].to_numpy()))
-    return float(base["sigma_eq"].iloc[k]), BODY - float(base["x2"].iloc[k])
-
-
 def _value(entry):
     return None if entry is None else entry["value"]
 
@@ -111,7 +104,7 @@ def curve(name, coating, session):
         summary, answers = result.summary, result.answers
         bond = answers["bonds"].get("bond-coating1", {})
         coating_stress = answers["coatings"].get("coating1", {}).get("von_mises")
-        substrate, depth = substrate_peak(result)
+        substrate = answers["substrate"]["von_mises"]
         rows.append({"coating": name, "force": force, "descent": summary["descent"],
                      "contact_radius": summary["contact_half_width"],
                      "peak_pressure": -summary["peak_contact_stress"],
@@ -119,7 +112,8 @@ def curve(name, coating, session):
                      "bond_shear": _value(bond.get("shear")),
                      "bond_peel": _value(bond.get("peel")),
                      "coating_von_mises": _value(coating_stress),
-                     "substrate_von_mises": substrate, "substrate_depth": depth,
+                     "substrate_von_mises": substrate["value"],
+                     "substrate_depth": substrate["depth"],
                      "hertz_radius": hertz_radius(force), "hertz_approach": hertz_approach(force),
                      "iterations": summary["iterations"], "seconds": took})
         previous = result

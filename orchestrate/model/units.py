@@ -54,7 +54,7 @@ KINDS = {
     "x1": LENGTH, "x2": LENGTH, "s": LENGTH, "xi": LENGTH, "u1": LENGTH, "u2": LENGTH,
     "u": LENGTH, "v": LENGTH, "w": LENGTH, "a_t": LENGTH, "a_n": LENGTH, "b_t": LENGTH,
     "b_n": LENGTH,
-    "displacement": LENGTH, "descent": LENGTH, "contact_half_width": LENGTH,
+    "displacement": LENGTH, "descent": LENGTH, "contact_half_width": LENGTH, "depth": LENGTH,
     "contact_half_width_estimate": LENGTH, "contact_zones": LENGTH,
     "interface_element_size": LENGTH, "interface_element_size_far": LENGTH,
     # stresses

@@ -7,6 +7,9 @@
                 the fibre stresses at the top and bottom faces and the mean shear from
                 the shell's forces (shell models; a shell of revolution's radial and
                 hoop fibre stresses)
+    substrate   the base's largest von Mises stress, where and how deep below its face
+                (under a Hertzian contact it lies below the surface; where the bodies'
+                fields are not computed, none)
 
 Where a bonded coating ends, the elastic solution is singular (a bi-material wedge): the
 stresses there grow as the mesh refines and have no converged value. Every maximum is
@@ -67,8 +70,12 @@ def _extreme(values, x1, x2, kind, end_zone):
 def _maxima(scene, quantities, x1, x2):
     """For each (name, values, kind): the extreme away from the patches' ends and,
     apart, the one within their end zones (mesh-dependent)."""
+    return _maxima_where(near_patch_ends(scene, np.asarray(x1)), quantities, x1, x2)
+
+
+def _maxima_where(near_end, quantities, x1, x2):
+    """_maxima with the points in the end zones given (``near_end``)."""
     x1, x2 = np.asarray(x1), np.asarray(x2)
-    near_end = near_patch_ends(scene, x1)
     away = {name: _extreme(np.asarray(values)[~near_end], x1[~near_end], x2[~near_end], kind,
                            False)
             for name, values, kind in quantities}
@@ -99,6 +106,28 @@ def coating_answers(scene, nodes):
     x1, x2, sigma_eq (columns by name)."""
     return _maxima(scene, [("von_mises", np.asarray(nodes["sigma_eq"]), MAGNITUDE)],
                    nodes["x1"], nodes["x2"])
+
+
+def substrate_answers(scene, nodes):
+    """The base's largest von Mises stress, its position and its depth below the base's
+    face, from its nodes' x1, x2, sigma_eq (columns by name; {} without them). A node
+    near a patch's end (within its end zone of it, across and below the face) is in the
+    end zones: the bond's corner is singular in the base too."""
+    if "sigma_eq" not in nodes or len(nodes["sigma_eq"]) == 0:
+        return {}
+    x1, x2 = np.asarray(nodes["x1"]), np.asarray(nodes["x2"])
+    base = scene.base
+    depth = (base.height - x2 if base.shape == "block"
+             else base.radius - np.hypot(x1, x2))
+    reach = max((end_zone_width(c) for c in scene.coatings), default=0.0)
+    near = near_patch_ends(scene, x1) & (depth <= reach)
+    found = _maxima_where(near, [("von_mises", np.asarray(nodes["sigma_eq"]), MAGNITUDE)],
+                          x1, x2)
+    for extreme in [found.get("von_mises"), found.get("at_patch_ends", {}).get("von_mises")]:
+        if extreme:
+            k = int(np.flatnonzero((x1 == extreme["x1"]) & (x2 == extreme["x2"]))[0])
+            extreme["depth"] = float(depth[k])
+    return found
 
 
 def fibre_stresses(fields, thickness):
@@ -156,10 +185,12 @@ def describe(answers, units):
     stress, length = units["stress"], units["length"]
 
     def where(extreme):
-        return f"{extreme['value']:.4g} {stress} at x1 = {extreme['x1']:.4g} {length}"
+        depth = (f", {extreme['depth']:.4g} {length} deep" if "depth" in extreme else "")
+        return f"{extreme['value']:.4g} {stress} at x1 = {extreme['x1']:.4g} {length}{depth}"
     lines = []
     for group, found in (("", {"contact": answers["contact"]}), ("bonds", answers["bonds"]),
-                         ("coatings", answers["coatings"])):
+                         ("coatings", answers["coatings"]),
+                         ("", {"substrate": answers.get("substrate") or {}})):
         for name, values in found.items():
             away = [f"{quantity.replace('_', ' ')} {where(extreme)}"
                     for quantity, extreme in values.items()

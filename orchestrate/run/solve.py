@@ -341,7 +341,8 @@ def _answers(problem, contact_rows, bond_rows, fields):
             coatings[name] = answers.coating_answers(scene, fields[name])
     return {"contact": answers.contact_answers(scene, contact["x1"], contact["x2"],
                                                contact["sigma_n"]),
-            "bonds": bonds, "coatings": coatings}
+            "bonds": bonds, "coatings": coatings,
+            "substrate": answers.substrate_answers(scene, fields["base"])}
 
 
 def _half_width(scene, x, sigma, zones):

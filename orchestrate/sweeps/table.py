@@ -71,7 +71,8 @@ def _answer_columns(answers):
     if not answers:
         return {}
     columns = {}
-    found = {"": answers["contact"], **answers["bonds"], **answers["coatings"]}
+    found = {"": answers["contact"], **answers["bonds"], **answers["coatings"],
+             "substrate": answers.get("substrate") or {}}
     for owner, values in found.items():
         for quantity, extreme in values.items():
             if quantity == "at_patch_ends":

@@ -146,7 +146,7 @@ def _leaves(tree, path=()):
 
 def test_the_summarys_answers_forces_and_positions_are_the_twins_scaled(twins):
     mm, twin = (json.loads((run / "summary.json").read_text()) for run in twins)
-    factor = {"value": STRESS, "x1": LENGTH, "x2": LENGTH}
+    factor = {"value": STRESS, "x1": LENGTH, "x2": LENGTH, "depth": LENGTH}
     compared = 0
     for path, value in _leaves(twin["answers"]):
         other = dict(_leaves(mm["answers"]))[path]

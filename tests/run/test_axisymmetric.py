@@ -225,3 +225,12 @@ def test_auto_chooses_the_2d_coating_on_an_axisymmetric_scene():
     plan = orchestrate.run.prepare(scene, Settings())
     assert plan.scene.coatings[0].model == "elastic"
     assert plan.model_choice["patches"][0]["not_estimated"].startswith("axisymmetric")
+
+
+def test_the_substrates_largest_von_mises_stress_is_hertzs(hertz_runs):
+    """Under Hertz's sphere the largest von Mises stress lies on the axis below the
+    surface: 0.62 p0 at z = 0.48 a for nu = 0.3 (Johnson, Contact Mechanics, 3.4)."""
+    substrate = hertz_runs[20.0]["answers"]["substrate"]["von_mises"]
+    assert substrate["value"] / PEAK == pytest.approx(0.62, abs=0.006)
+    assert substrate["depth"] / CONTACT_RADIUS == pytest.approx(0.48, abs=0.04)
+    assert substrate["x1"] < 0.05 * CONTACT_RADIUS
