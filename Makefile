@@ -122,10 +122,12 @@ gallery: setup
 
 # Spherical indentation (axisymmetric scenes): a rigid ball on coated steel, its force
 # stepped (results/indentation.csv, .md), and rigid spheres against Hertz and against an
-# independent coated half-space solution (results/sphere_layered.csv, .md).
+# independent coated half-space solution (results/sphere_layered.csv, .md); the shells of
+# revolution against the 2D coating as it thins (results/revolution_models.csv, .md).
 indentation: setup
 	$(PYTHON) -m studies.indentation
 	$(PYTHON) -m studies.sphere_layered
+	$(PYTHON) -m studies.revolution_models
 
 # Iterations per contact set of the gallery's scenes at mesh levels 1-3, the coatings
 # inside the base's worker and exchanged across their bonds (results/iterations.md)
