@@ -10,6 +10,7 @@ relative (measured: 4e-6)."""
 
 import io
 import json
+import math
 import os
 import shutil
 import signal
@@ -481,3 +482,47 @@ def test_a_scene_file_edited_while_a_sweep_runs_leaves_no_stale_point(tmp_path):
     assert len(solved) == 3 and solved[2] == solved[0]
     assert "1 point(s) during the sweep: its inputs changed" in said.getvalue()
     assert set(table["E2"]) == {2.0} and table.converged.all()
+
+
+CURVE_SCENE = """
+axisymmetric = true
+[indenter]
+radius = 20.0
+rigid = true
+width = 4.0
+height = 4.0
+[base]
+width = 20.0
+height = 20.0
+[load]
+force = 0.07326
+"""
+CURVE = """
+name = "curve"
+warm_start = true
+[fixed]
+scene = "ball.toml"
+element_size = 0.0625      # one mesh for every step: the workers are kept
+[grid]
+"load.force" = [0.0375, 0.07326, 0.1431]
+"""
+
+
+def test_an_indentation_curve_is_a_sweep_over_the_force(tmp_path):
+    """A rigid sphere (R = 20 b) on a cylinder 20 b wide and deep, its force stepped so
+    that Hertz's contact radius is 0.8, 1 and 1.25 b: each step from its neighbour, each
+    within 1 % of Hertz in contact radius and peak pressure (tests/run/
+    test_axisymmetric.py: 0.05 % at one force)."""
+    (tmp_path / "ball.toml").write_text(CURVE_SCENE)
+    (tmp_path / "curve.toml").write_text(CURVE)
+    table = run_sweep(tmp_path / "curve.toml", tmp_path / "out", jobs=1,
+                      stream=open(os.devnull, "w"))
+    assert list(table.status) == ["converged"] * 3
+    modulus = 1.0 / (1.0 - 0.3 ** 2)
+    for _, row in table.iterrows():
+        force = row["load.force"]
+        a = (0.75 * force * 20.0 / modulus) ** (1.0 / 3.0)
+        assert row["contact_half_width"] / a == pytest.approx(1.0, abs=0.01)
+        assert row["peak_pressure"] / (1.5 * force / (math.pi * a ** 2)) == pytest.approx(
+            1.0, abs=0.01)
+    assert table.started_from.notna().sum() == 2
