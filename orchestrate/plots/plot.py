@@ -80,8 +80,9 @@ def run_units(summary):
     units = summary.get("units", {})
     length, stress = units.get("length", "b"), units.get("stress", "E")
     force = units.get("force", "E b" if (length, stress) == ("b", "E") else f"{stress} {length}")
+    per = "" if force.endswith("^2") else " per unit width"     # an axisymmetric run's: total
     return {"length": length, "stress": stress,
-            "force": force.replace(" (per unit width)", "") + " per unit width"}
+            "force": force.replace(" (per unit width)", "") + per}
 
 
 def face_extent(scene):
@@ -175,9 +176,11 @@ def scene_title(summary, scene, units):
     if np.isinf(indenter.radius):
         shape = "flat indenter"
     else:
-        shape = (f"{'cylinder' if indenter.profile == 'circle' else 'parabolic indenter'} "
+        round_face = "sphere" if scene.axisymmetric else "cylinder"
+        shape = (f"{round_face if indenter.profile == 'circle' else 'parabolic indenter'} "
                  f"R = {indenter.radius:g} {length}")
-    on = "block" if base.shape == "block" else f"roller R = {base.radius:g} {length}"
+    on = ("cylinder" if scene.axisymmetric else "block" if base.shape == "block"
+          else f"roller R = {base.radius:g} {length}")
     moduli = (f"rigid indenter, E = {base.E:g} {stress}" if indenter.rigid
               else f"E = {base.E:g} {stress}" if indenter.E == base.E
               else f"E = {indenter.E:g} / {base.E:g} {stress}")
@@ -196,7 +199,9 @@ def scene_title(summary, scene, units):
         f"{f'{count} patches' if count > 1 else 'coating'} h = {thickness:g} {length}, "
         f"E = {E:g} {stress} ({MODEL_NAMES.get(model, model)})"
         for (thickness, E, model), count in kinds.items()) or "uncoated"
-    return f"{first}\n{patches}" + ("; half model" if scene.symmetric else "")
+    view = ("; axisymmetric" if scene.axisymmetric else "; half model" if scene.symmetric
+            else "")
+    return f"{first}\n{patches}{view}"
 
 
 def _answer_marks(summary, interface, units):
@@ -289,7 +294,8 @@ def stresses_figure(run_dir):
         handles.append(Patch(color=END_ZONE_COLOUR, alpha=0.12,
                              label="patch end zone: drawn, out of the y scale"))
     axes.legend(handles=handles, fontsize=7)
-    axes.set_xlabel(f"$x_1$ ({units['length']})"
+    axes.set_xlabel(f"$r$ ({units['length']})" if scene.axisymmetric else
+                    f"$x_1$ ({units['length']})"
                     + (" from the symmetry axis" if scene.symmetric else ""))
     axes.set_ylabel(f"stress ({units['stress']}; compression < 0)")
     axes.set_title(scene_title(summary, scene, units), fontsize=9)
