@@ -144,18 +144,18 @@ stress = "MPa"
 b = 0.05
 [indenter]
 radius = 5.0
+width = 0.5
+height = 0.5
+E = "210 GPa"
+nu = 0.3
+[base]
 width = 1.0
 height = 1.0
 E = "210 GPa"
 nu = 0.3
-[base]
-width = 2.0
-height = 2.0
-E = "210 GPa"
-nu = 0.3
 [[coating]]
 start = 0.0
-end = 1.0
+end = 0.5
 thickness = "2 um"
 E = "250 GPa"
 nu = 0.3
@@ -170,12 +170,12 @@ BAD = [
     ("a half space of revolution made a full model",
      _ball("force = \"20 N\"", top="symmetric = false\n"), ["symmetric = false", "meridian"]),
     ("a roller of revolution", _ball("force = \"20 N\"").replace(
-        "width = 2.0\nheight = 2.0", "shape = \"roller\"\nradius = 2.0"),
+        "width = 1.0\nheight = 1.0", "shape = \"roller\"\nradius = 1.0"),
      ["base.shape = 'roller'", "a roller is a plane scene"]),
     ("a ring across the axis", _ball("force = \"20 N\"").replace(
         "start = 0.0", "start = -0.5"), ["coating[1].start = -0.5", "r >= 0"]),
     ("a ring beyond the face", _ball("force = \"20 N\"").replace(
-        "end = 1.0", "end = 3.0"), ["coating[1].end = 3.0", "[0, 2]"]),
+        "end = 0.5", "end = 3.0"), ["coating[1].end = 3.0", "[0, 1]"]),
 ]
 
 
