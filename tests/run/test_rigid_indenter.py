@@ -1,8 +1,8 @@
 """A rigid indenter (indenter.rigid = true): no body, one unknown pressed by the stamp
 (freefem/subdomain_rigid.idp, rigid.edp). Its physics against plane-strain Hertz with
-the base's E* alone; the model against an elastic indenter a million times stiffer than
-the base (the monolithic solve of each: the same mesh and penalty; the difference shrinks as 1/E); the scene's unit of
-stress and its inputs. (The Robin loop against the monolithic solve of the same
+the base's E* alone; the model against elastic indenters 10^4 and 10^5 times stiffer
+than the base (the monolithic solve of each: the same mesh and penalty; the difference
+shrinks as 1/E); the scene's unit of stress and its inputs. (The Robin loop against the monolithic solve of the same
 problem, under a force and a descent: tests/ddm/test_monolithic.py.)"""
 
 from dataclasses import replace
@@ -20,6 +20,7 @@ from orchestrate.run import monolithic_of, prepare
 pytestmark = pytest.mark.slow       # not in the everyday subset (make test-fast)
 
 RADIUS, NU = 40.0, 0.3
+STIFF = (1e4, 1e5)                  # the stiff indenters' moduli (E)
 
 
 def _hertz_scene(size, a=1.0):
@@ -49,12 +50,12 @@ def test_a_rigid_cylinder_on_a_large_block_is_hertz():
 @pytest.fixture(scope="module")
 def rigid_and_stiff():
     """The monolithic solves of a coated block under a rigid cylinder and under ones of
-    10^5 and 10^6 E, each pair at the same penalty (theta in the solver's units: a
+    10^4 and 10^5 E, each pair at the same penalty (theta in the solver's units: a
     scene's theta is in b/E of its stiffer body) and interface elements."""
     scene, _ = load_scene(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
     scene = apply_overrides(scene, {"coating.model": "elastic", "indenter.rigid": True})
     solved = {}
-    for modulus in (1e5, 1e6):
+    for modulus in STIFF:
         stiff = apply_overrides(scene, {"indenter.rigid": False, "indenter.E": modulus})
         for name, case, theta in (("rigid", scene, 1.0 / modulus), ("stiff", stiff, 1.0)):
             problem = prepare(case, Settings(element_size=0.0625, theta=theta)).problem
@@ -76,20 +77,26 @@ def _difference(rigid, stiff):
 
 
 def test_the_rigid_indenter_is_the_limit_of_a_stiff_one(rigid_and_stiff):
-    """Against 10^6 E within 2e-5 of every interface's stresses (measured 8.4e-6), and
-    the difference is the stiff indenter's own compliance: against 10^5 E it is more
-    than five times larger (measured 21 times)."""
-    for modulus in (1e5, 1e6):
+    """The difference from a stiff indenter is that indenter's own compliance: it falls
+    as 1/E (measured: 1.771e-3 of the interface stresses at 10^4 E, 1.78e-4 at 10^5 E,
+    a ratio of 9.95; the descent's 6.56e-5 and 6.5e-6), so the rigid indenter is the
+    limit, and an indenter of 10^6 E differs from it by about 1.8e-5. That last one is
+    not measured here: a monolithic solve of the 10^6 E scene varies from run to run by
+    6e-6 to 1.7e-5 of its stresses (its conditioning; measured on this and the previous
+    version of the forms), as much as the difference itself, while at 10^5 E it varies
+    by 0.2 % of the difference."""
+    for modulus in STIFF:
         rigid, stiff = rigid_and_stiff["rigid", modulus], rigid_and_stiff["stiff", modulus]
         assert rigid[0].penalty == pytest.approx(stiff[0].penalty, rel=1e-12)
-    near, near_descent = _difference(rigid_and_stiff["rigid", 1e6], rigid_and_stiff["stiff", 1e6])
-    far, _ = _difference(rigid_and_stiff["rigid", 1e5], rigid_and_stiff["stiff", 1e5])
-    assert near < 2e-5 and near_descent < 1e-6, (near, near_descent)
-    assert far > 5.0 * near, (far, near)
+    (far, far_descent), (near, near_descent) = (
+        _difference(rigid_and_stiff["rigid", m], rigid_and_stiff["stiff", m]) for m in STIFF)
+    assert near < 2e-4 and near_descent < 1e-5, (near, near_descent)
+    assert far / near == pytest.approx(10.0, rel=0.05), (far, near)
+    assert far_descent / near_descent == pytest.approx(10.0, rel=0.05)
 
 
 def test_the_rigid_indenter_has_no_mesh(rigid_and_stiff):
-    rigid, stiff = rigid_and_stiff["rigid", 1e6][0], rigid_and_stiff["stiff", 1e6][0]
+    rigid, stiff = rigid_and_stiff["rigid", STIFF[1]][0], rigid_and_stiff["stiff", STIFF[1]][0]
     assert rigid.subdomains["indenter"].kind == "rigid"
     assert rigid.subdomains["indenter"].plan is None
     assert stiff.subdomains["indenter"].kind == "body"
