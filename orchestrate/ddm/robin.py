@@ -577,10 +577,11 @@ class _ActiveSetLoop(_Loop):
                 target = (image if self.coarse is None
                           else image + self.coarse.correction(psi, image - x))
                 x_next = anderson.step(x, target)
-                self.estimate = (self.error_estimate(target, x, anderson, scale)
-                                 if anderson.secants >= knobs.min_secants else math.inf)
-                displacement_error = (self.part_errors(target, x, anderson, scale)[0]
-                                      if anderson.secants >= knobs.min_secants else math.inf)
+                self.estimate = displacement_error = math.inf
+                if anderson.secants >= knobs.min_secants:
+                    errors = self.part_errors(target, x, anderson, scale)
+                    self.estimate = knobs.estimate_margin * float(np.max(errors))
+                    displacement_error = float(errors[0])
             done, reason = self.converged(self.estimate)
             if system is not None and psi_settled and not done:
                 system = None     # too ill-conditioned to solve directly: iterate on

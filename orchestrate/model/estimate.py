@@ -205,7 +205,7 @@ def scene_ratios(scene, coating, a=None):
 def not_estimated(scene, coating, a=None):
     """Why the 1D models' errors are not estimated for this patch (None: they are)."""
     if scene.axisymmetric:
-        return "an axisymmetric scene: the estimate is calibrated in plane strain"
+        return "axisymmetric scene: the shells' error estimate is calibrated in plane strain"
     low, high = NU2_CALIBRATED
     if not low <= coating.nu <= high:
         return f"coating Poisson ratio {coating.nu:g} outside the calibrated [{low:g}, {high:g}]"

@@ -82,9 +82,8 @@ def _revolution_models(scene, auto, tolerance):
     """An axisymmetric scene's "auto" patches: the 2D coating, no error estimated (the
     estimate of the shells' errors is calibrated on plane scenes; the shells of
     revolution, chosen by hand, have none)."""
-    reason = "axisymmetric scene: the shells' error estimate is calibrated in plane strain"
     patches = [{"patch": n + 1, "model": "elastic", "estimated_error": None,
-                "not_estimated": reason} for n in auto]
+                "not_estimated": not_estimated(scene, scene.coatings[n])} for n in auto]
     models = ["elastic" if c.model == AUTO else c.model for c in scene.coatings]
     return scene.with_models(models), {"tolerance": tolerance, "patches": patches}
 
