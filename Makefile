@@ -7,7 +7,7 @@
 #   make stability  a sweep of 102 runs and maps of where each method converges
 #   make discrete   a cylinder over a coating in patches, both models (results/discrete.png)
 #   make adequacy   where each coating model is adequate, and model = "auto" checked
-#                   on 36 held-out scenes (results/adequacy/)
+#                   on held-out plane and axisymmetric scenes (results/adequacy/)
 #   make gallery    the engineers' scenes against the monolithic solve (results/gallery.md)
 #   make iterations iterations per contact set against the mesh level (results/iterations.md)
 #   make indentation  a ball on coated steel: indentation curves and stresses
@@ -134,9 +134,10 @@ indentation: setup
 iterations: setup
 	$(PYTHON) -m studies.iterations
 
-# The model error of each coating model over h2/a x E2/E (the paper's scene) and the
-# automatic choice on held-out scenes (about 40 minutes; finished scenes are kept in
-# results/adequacy/*.csv, so an interrupted study resumes).
+# The model error of each coating model over h2/a x E2/E (the paper's scene, a sphere on
+# a coated cylinder) and the automatic choice on held-out scenes (about an hour and a
+# half; finished scenes are kept in results/adequacy/*.csv, so an interrupted study
+# resumes).
 adequacy: setup
 	$(PYTHON) -m studies.adequacy
 

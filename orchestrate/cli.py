@@ -19,13 +19,15 @@ import tomllib
 import traceback
 
 from orchestrate.run.answers import describe
+from orchestrate.model.estimate import answers_text
 from orchestrate.errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT_INTERRUPTED,
                      EXIT_NOT_CONVERGED, EXIT_WARNINGS,
                      EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure,
                      WarnedBeforeWork)
 from orchestrate.workers.freefem import FreeFemMissing
 from orchestrate.model.scene import (BONDS, INNER_SOLVES, KNOB_RANGES, METHODS,
-                                     MODEL_CHOICES, ROBIN_SIDES, WORKERS, Settings)
+                                     MODEL_ANSWERS, MODEL_CHOICES, ROBIN_SIDES, WORKERS,
+                                     Settings)
 from orchestrate.model.scene_file import SETTINGS_LENGTHS, SHORTHANDS, scene_and_settings
 
 EXIT_STATUSES = """exit status:
@@ -71,8 +73,11 @@ _SETTINGS_HELP = {
     "worker_timeout": "seconds a worker may take to answer before the run fails",
     "memory_limit": "GiB the run may take (estimated before any work; default: 3/4 of the "
                     "memory free)",
-    "model_tolerance": "with --model auto: the estimated relative error of the peak contact "
-                       "stress the chosen coating model may have",
+    "model_tolerance": "with --model auto: the estimated relative error the chosen coating "
+                       "model may have in each answer --model-answers names",
+    "model_answers": "the answers --model-tolerance covers: normal (the peak contact stress "
+                     "and the bond's normal stress) or all (and the bond's shear, which the "
+                     "shells miss by several to tens of per cent)",
     "body_fields": "write the indenter's and base's nodal fields (CSV, VTU; the coatings' "
                    "and the interfaces' are written always)",
     # the strategy's knobs (Settings' comments say more; summary.json's "strategy")
@@ -111,7 +116,8 @@ _SETTINGS_HELP = {
     "coarse_newton_steps": "Newton steps of the coarse contact problem at most",
 }
 _CHOICES = {"model": MODEL_CHOICES, "method": METHODS, "inner_solve": INNER_SOLVES,
-            "workers": WORKERS, "robin_sides": ROBIN_SIDES, "bonds": BONDS}
+            "workers": WORKERS, "robin_sides": ROBIN_SIDES, "bonds": BONDS,
+            "model_answers": MODEL_ANSWERS}
 
 
 def _option(name):
@@ -381,7 +387,7 @@ def _solve(args):
     for patch in (summary["model_choice"] or {}).get("patches", []):
         estimate = (f"1D models not estimated: {patch['not_estimated']}"
                     if patch["not_estimated"] else
-                    f"estimated error of the peak contact and bond stresses "
+                    f"estimated error of the {answers_text(settings.model_answers)} "
                     f"{100 * patch['estimated_error']:.2g} %, tolerance "
                     f"{100 * settings.model_tolerance:g} %")
         _say(f"coating[{patch['patch']}]: model auto chose {patch['model']} ({estimate})")

@@ -138,9 +138,10 @@ def scene_from_table(data, path=None):
 
 
 def _with_default_model(table, data):
-    """A patch's table; on an axisymmetric scene without a model, the 2D coating's (what
-    "auto" chooses there: the shells of revolution have no error estimate yet,
-    run/plan.py)."""
+    """A patch's table; on an axisymmetric scene without a model, the 2D coating's (the
+    plane scenes' default stays the paper's shell; on a sphere's scene "auto" under the
+    default answers takes the 2D coating nearly always: the shells of revolution's bond
+    shear is several to tens of per cent off, orchestrate/model/estimate.py)."""
     if data.get("axisymmetric") is True and isinstance(table, dict) and "model" not in table:
         return {**table, "model": "elastic"}
     return table

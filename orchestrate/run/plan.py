@@ -5,9 +5,9 @@ the coarse level's problem where it has two levels), and the warnings the scene 
 has (a Plan).
 
 model = "auto" takes, per patch, the cheapest coating model whose estimated errors
-(orchestrate/model/estimate.py) are within the tolerance. Cost: the estimated number of
-unknowns of the whole problem (orchestrate/mesh/problem_size.py), counted before any
-mesh. Costs within COST_TIE of the cheapest count as the same, and then the more
+(orchestrate/model/estimate.py) of the answers settings.model_answers names are within
+the tolerance. Cost: the estimated number of unknowns of the whole problem
+(orchestrate/mesh/problem_size.py), counted before any mesh. Costs within COST_TIE of the cheapest count as the same, and then the more
 faithful model wins: on the paper's mesh the 2D coating needs no more unknowns than a
 shell until it must refine (thinner than about b/32), and a run's time follows its
 unknowns (docs/findings.md, "Speed and accuracy").
@@ -27,9 +27,8 @@ from orchestrate.ddm.robin_parameters import contrast_exceeds
 from orchestrate.ddm.strategy import plan_strategy
 from orchestrate.mesh.discretization import discretize
 from orchestrate.mesh.problem_size import check_size, estimated_dofs
-from orchestrate.model.estimate import (contact_half_width, estimated_errors, not_estimated,
-                                        predicted_half_width,
-                                        worst_error)
+from orchestrate.model.estimate import (ANSWERS, contact_half_width, estimated_errors,
+                                        not_estimated, predicted_half_width, worst_error)
 from orchestrate.model.scene import MESH_LEVEL_LIMIT, check_compatible
 from orchestrate.model.units import dimensionless
 from orchestrate.run.validity import Say, mesh_warnings, scene_warnings
@@ -49,9 +48,7 @@ def choose_models(scene, settings, a=None):
     auto = [n for n, c in enumerate(scene.coatings) if c.model == AUTO]
     if not auto:
         return scene, None
-    tolerance = settings.model_tolerance
-    if scene.axisymmetric:
-        return _revolution_models(scene, auto, tolerance)
+    tolerance, answers = settings.model_tolerance, settings.model_answers
     a = contact_half_width(scene) if a is None else a
     # while a patch is decided, the other undecided ones are shells (the cheapest)
     models = [("shell" if c.model == AUTO else c.model) for c in scene.coatings]
@@ -64,28 +61,18 @@ def choose_models(scene, settings, a=None):
             trial = list(models)
             trial[n] = model
             unknowns[model] = round(estimated_unknowns(scene.with_models(trial), settings))
-        passing = [m for m in FIDELITY if worst_error(errors[m]) <= tolerance]
+        passing = [m for m in FIDELITY if worst_error(errors[m], answers) <= tolerance]
         cheapest = min(unknowns[m] for m in passing)           # elastic always passes
         chosen = [m for m in passing if unknowns[m] <= COST_TIE * cheapest][-1]
         models[n] = chosen
         patches.append({"patch": n + 1, "model": chosen,
-                        "estimated_error": worst_error(errors[chosen]),
+                        "estimated_error": worst_error(errors[chosen], answers),
                         "not_estimated": not_estimated(scene, coating, a),
                         "h2_over_a": coating.thickness / a if a else None,
                         "estimated_errors": errors, "estimated_unknowns": unknowns})
-    report = {"tolerance": tolerance, "contact_half_width_estimate": a,
-              "patches": patches}
+    report = {"tolerance": tolerance, "answers_judged": ANSWERS[answers],
+              "contact_half_width_estimate": a, "patches": patches}
     return scene.with_models(models), report
-
-
-def _revolution_models(scene, auto, tolerance):
-    """An axisymmetric scene's "auto" patches: the 2D coating, no error estimated (the
-    estimate of the shells' errors is calibrated on plane scenes; the shells of
-    revolution, chosen by hand, have none)."""
-    patches = [{"patch": n + 1, "model": "elastic", "estimated_error": None,
-                "not_estimated": not_estimated(scene, scene.coatings[n])} for n in auto]
-    models = ["elastic" if c.model == AUTO else c.model for c in scene.coatings]
-    return scene.with_models(models), {"tolerance": tolerance, "patches": patches}
 
 
 @dataclass(frozen=True)
@@ -101,15 +88,28 @@ class Plan:
     coarse: object         # the coarse level's problem where the strategy has two levels
 
 
-def prepare(scene, settings):
-    """Everything checked and decided before any work (a Plan). ParameterError for
-    settings the scene cannot take or a problem too large."""
+def _decided_models(scene, settings):
+    """The dimensionless scene with its "auto" patches chosen, on the mesh a run sizes
+    to its contact: (scene, model choice, scales, settings sized, a, predicted)."""
     check_compatible(scene, settings)
     solved, scales = dimensionless(scene)
     a = contact_half_width(solved)           # the a priori estimate, made once
     predicted = predicted_half_width(solved, a)     # with a compliant coating's spread
     settings = settings.sized_to(predicted)  # the mesh sized to the contact
     solved, model_choice = choose_models(solved, settings, a)
+    return solved, model_choice, scales, settings, a, predicted
+
+
+def model_choice(scene, settings):
+    """The choice of a run's "auto" patches (its report, or None), as prepare makes it,
+    without the rest of the plan."""
+    return _decided_models(scene, settings)[1]
+
+
+def prepare(scene, settings):
+    """Everything checked and decided before any work (a Plan). ParameterError for
+    settings the scene cannot take or a problem too large."""
+    solved, model_choice, scales, settings, a, predicted = _decided_models(scene, settings)
     problem = discretize(solved, settings)
     contrast = (settings.inner_solve == AUTO and settings.two_levels
                 and contrast_exceeds(problem, settings.robin_sides, settings.hold_contrast))

@@ -27,6 +27,9 @@ a column of a sweep's table; ``--strict`` makes them an exit status of their own
     model_error            a coating model chosen by the user whose estimated error
                            exceeds the tolerance (settings.model_tolerance)
     model_uncalibrated     ... whose error the estimate does not cover (its reason)
+    bond_shear_model       a shell patch (chosen by the user or by auto) whose bond
+                           shear, an answer the tolerance does not cover under
+                           model_answers = "normal", is estimated off by more than it
     thick_coating          a coating thicker than a share of its base's depth: not a thin
                            coating on a body
     singular_contact_peak  the largest contact pressure at a patch's end: a step under
@@ -37,7 +40,8 @@ Values are computed in the solver's b and E and said in the scene's units.
 
 import numpy as np
 
-from orchestrate.model.estimate import estimated_errors, not_estimated
+from orchestrate.model.estimate import (ANSWER_NAMES, ANSWERS, estimated_errors, not_estimated,
+                                        worst_error)
 from orchestrate.model.scene import SHELL_MODELS
 
 STRAIN_LIMIT = 0.02          # linear elasticity drops the strain's quadratic term, about half
@@ -132,6 +136,19 @@ def scene_warnings(scene, given, settings, say, a):
                 f"base is deep ({say.units.length}: {coating.thickness:.4g} against "
                 f"{depth:.4g}; limit {100 * COATING_SHARE:g} %): not a thin coating on a "
                 "body; the base's clamping acts through it", share, COATING_SHARE))
+        if coating.model not in SHELL_MODELS:
+            continue
+        errors = estimated_errors(scene, coating, a)[coating.model]
+        if errors is not None and "shear" not in ANSWERS[settings.model_answers] \
+                and errors["shear"] > settings.model_tolerance:
+            warnings.append(_warning(
+                "bond_shear_model", f"coating[{number}] is a {coating.model}: its bond "
+                f"shear is estimated {100 * errors['shear']:.3g} % off the 2D coating's "
+                f"(tolerance {100 * settings.model_tolerance:g} %, which model_answers = "
+                f"\"{settings.model_answers}\" applies to the pressure and the bond's "
+                "normal stress only); model_answers = \"all\" or model = \"elastic\" "
+                "for a bond shear within it", errors["shear"],
+                settings.model_tolerance))
         if asked.model not in SHELL_MODELS:
             continue
         reason = not_estimated(scene, coating, a)
@@ -142,13 +159,17 @@ def scene_warnings(scene, given, settings, say, a):
                 f"{say.units.length}); model = \"elastic\" or \"auto\" is exact for the "
                 "coating"))
             continue
-        error = max(estimated_errors(scene, coating, a)[coating.model].values())
+        error = worst_error(errors, settings.model_answers)
         if error > settings.model_tolerance:
+            each = ", ".join(f"{ANSWER_NAMES[name]} {100 * errors[name]:.3g} %"
+                             for name in ANSWERS[settings.model_answers])
             warnings.append(_warning(
                 "model_error", f"coating[{number}] is modelled as a {coating.model}, whose "
-                f"estimated error of the peak contact and bond stresses is {100 * error:.3g} %"
-                f" (tolerance {100 * settings.model_tolerance:g} %, settings.model_tolerance);"
-                " model = \"auto\" chooses one within it", error, settings.model_tolerance))
+                f"estimated errors are: {each} (tolerance {100 * settings.model_tolerance:g} "
+                "%, settings.model_tolerance, on the answers settings.model_answers = "
+                f"\"{settings.model_answers}\" names); model = \"auto\" chooses one "
+                "within it", error,
+                settings.model_tolerance))
     return warnings
 
 

@@ -129,6 +129,7 @@ SETTINGS = {
     "worker_timeout": [0.0, -1.0, math.nan, "long"],
     "memory_limit": [-1.0, 0.0, math.nan, "big"],
     "model_tolerance": [0.0, -0.1, 2.0, math.nan],
+    "model_answers": ["shear", 1.0, ["contact"]],
     "body_fields": ["yes", 1.0],
     "solver": ["mumps"],
 }

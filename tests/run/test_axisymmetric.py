@@ -217,14 +217,28 @@ def test_a_shell_on_an_axisymmetric_scene_is_a_shell_of_revolution(model, tmp_pa
     assert {"radial_top_compression", "hoop_top_compression", "mean_shear"} <= set(coating)
 
 
-def test_auto_chooses_the_2d_coating_on_an_axisymmetric_scene():
+@pytest.mark.parametrize("answers, thickness, chosen", [
+    ("all", 1 / 128, "elastic"),          # the shells' bond shear: 1.4 % and more
+    ("normal", 1 / 128, "stretch_shell"),  # the 2D coating: four times the unknowns
+    ("normal", 1 / 16, "elastic"),        # as cheap as a shell
+])
+def test_auto_estimates_the_shells_of_revolution(answers, thickness, chosen):
+    """auto on an axisymmetric scene takes the revolution constants (estimate.REVOLUTION)
+    and chooses as on a plane one: the cheapest model within the tolerance in the
+    answers judged; the choice is the run's."""
     scene = Scene(indenter=Indenter(radius=RADIUS, width=4.0, height=4.0, rigid=True),
                   base=Base(width=12.0, height=12.0),
-                  coatings=(Coating(start=0.0, end=3.0, thickness=0.25, E=4.0, model="auto"),),
+                  coatings=(Coating(start=0.0, end=3.0, thickness=thickness, E=4.0,
+                                    model="auto"),),
                   load=Load(force=0.05), axisymmetric=True)
-    plan = orchestrate.run.prepare(scene, Settings())
-    assert plan.scene.coatings[0].model == "elastic"
-    assert plan.model_choice["patches"][0]["not_estimated"].startswith("axisymmetric")
+    plan = orchestrate.run.prepare(scene, Settings(model_answers=answers))
+    assert plan.scene.coatings[0].model == chosen
+    patch = plan.model_choice["patches"][0]
+    assert patch["not_estimated"] is None and patch["estimated_error"] <= 0.01
+    errors = patch["estimated_errors"]
+    assert errors["stretch_shell"]["shear"] > 0.01 > errors["stretch_shell"]["contact"]
+    shell = plan.problem.subdomains["coating1"].plan
+    assert getattr(shell, "revolution", False) == (chosen != "elastic")   # of revolution
 
 
 def test_the_substrates_largest_von_mises_stress_is_hertzs(hertz_runs):

@@ -30,9 +30,12 @@ SCENES = {
     "steel in GPa labelled MPa": ("steel_gpa", {}, {}),
     # a cylinder pressed until its contact spreads over the whole block
     "overloaded cylinder": (CYLINDER, {"load.force": 1.5}, {}),
-    "elements as long as the contact": ("steel", {}, {"element_size": "2.5 mm"}),
+    # a shell: the 2D coating would refine the interface to its thickness
+    "elements as long as the contact": ("steel_shell", {}, {"element_size": "2.5 mm"}),
     "a soft thick coating as a shell": (None, {"h2": 1.0, "E2": 0.2, "model": "shell"}, {}),
     "a shell of Poisson ratio 0.45": (None, {"nu2": 0.45, "model": "shell"}, {}),
+    "auto's stretch shell on a thin coating": (None, {"h2": 1 / 64, "E2": 0.2,
+                                                      "model": "auto"}, {}),
     "a coating 31 % of its base": (None, {"h2": 2.5, "model": "elastic"}, {}),
     "a patch ending under the contact": (CYLINDER, {"coating.end": 0.3, "load.force": 0.01},
                                          {}),
@@ -43,9 +46,11 @@ SCENES = {
 def summaries(tmp_path_factory):
     """Each scene's summary, solved once."""
     folder = tmp_path_factory.mktemp("validity")
-    files = {"steel": folder / "steel.toml", "steel_gpa": folder / "steel_gpa.toml"}
-    steel_scene(files["steel"])
-    steel_scene(files["steel_gpa"], E=210.0, E2=450.0)
+    files = {name: folder / f"{name}.toml" for name in ("steel", "steel_gpa", "steel_shell")}
+    # the 2D coating: a shell's bond shear is off by several per cent (bond_shear_model)
+    steel_scene(files["steel"], model="elastic")
+    steel_scene(files["steel_shell"])
+    steel_scene(files["steel_gpa"], E=210.0, E2=450.0, model="elastic")
     found = {}
     for number, (name, (path, overrides, settings)) in enumerate(SCENES.items()):
         scene, settings = scene_and_settings(files.get(path, path), overrides, settings)
@@ -99,7 +104,20 @@ def test_a_shell_chosen_where_its_estimate_is_far_off_is_said(summaries):
     summary = summaries["a soft thick coating as a shell"]
     found = _warnings(summary)
     assert found["model_error"]["value"] > summary["settings"]["model_tolerance"]
-    assert set(found) == {"model_error"}
+    assert set(found) == {"model_error", "bond_shear_model"}
+
+
+def test_a_shell_whose_bond_shear_is_off_says_so_though_auto_chose_it(summaries):
+    """Under the default answers (the pressure and the bond's normal stress) auto takes
+    the stretch shell on a thin coating; its bond shear, unjudged, is said."""
+    summary = summaries["auto's stretch shell on a thin coating"]
+    assert summary["scene"]["coatings"][0]["model"] == "stretch_shell"
+    found = _warnings(summary)
+    assert set(found) == {"bond_shear_model"}
+    shear = found["bond_shear_model"]
+    assert shear["value"] > shear["limit"] == summary["settings"]["model_tolerance"]
+    assert shear["value"] == pytest.approx(
+        summary["model_choice"]["patches"][0]["estimated_errors"]["stretch_shell"]["shear"])
 
 
 def test_a_shell_outside_the_estimates_range_is_said(summaries):

@@ -113,7 +113,7 @@ def test_the_figure_scenes_warn_only_where_the_shell_is_measured_off(figures):
     elastic = table[table["model"] == "elastic"].set_index(["h2", "E2"])
     for name, row in table.iterrows():
         summary = json.loads((figures / "figures" / "runs" / name / "summary.json").read_text())
-        codes = [w["code"] for w in summary["warnings"]]
+        codes = [w["code"] for w in summary["warnings"] if w["code"] != "bond_shear_model"]
         if row["model"] == "elastic":
             assert codes == [], name
             continue
@@ -123,8 +123,31 @@ def test_the_figure_scenes_warn_only_where_the_shell_is_measured_off(figures):
         tolerance = summary["settings"]["model_tolerance"]
         assert codes == (["model_error"] if measured > tolerance else []), (name, measured)
         if codes:
-            estimate = summary["warnings"][0]["value"]
+            [estimate] = [w["value"] for w in summary["warnings"] if w["code"] == "model_error"]
             assert 0.5 <= estimate / measured <= 2.0, (name, estimate, measured)
+
+
+def test_the_figure_shell_runs_say_their_bond_shear_where_it_is_off(figures):
+    """The bond shear, which the default answers leave unjudged: every shell run whose
+    largest bond shear differs from the 2D model's run of the same scene by more than
+    the tolerance warns (bond_shear_model), with an estimate within a factor 2 of that
+    difference. (The estimate is within 2x of the measured error in most cases, not
+    all, studies/adequacy.py: on the thickest stiff coating, h2 = b, E2 = 5 E, it warns
+    at 1.6 % where the difference is 0.6 %; results/claims.md lists every run.)"""
+    table = pd.read_csv(figures / "figures" / "runs.csv").set_index("id")
+    elastic = table[table["model"] == "elastic"].set_index(["h2", "E2"])
+    warned = 0
+    for name, row in table[table["model"] == "shell"].iterrows():
+        summary = json.loads((figures / "figures" / "runs" / name / "summary.json").read_text())
+        found = [w for w in summary["warnings"] if w["code"] == "bond_shear_model"]
+        key = "bond-coating1.shear"
+        measured = abs(row[key] / elastic.loc[(row["h2"], row["E2"])][key] - 1.0)
+        if measured > summary["settings"]["model_tolerance"]:
+            assert found, (name, measured)
+            assert 0.5 <= found[0]["value"] / measured <= 2.0, (name, found[0]["value"],
+                                                                measured)
+            warned += 1
+    assert warned >= 8          # the shells' bond shear is off on nearly every figure scene
 
 
 def test_every_bond_answer_has_a_value_away_from_the_patch_end_on_thick_coatings(figures):
