@@ -88,7 +88,8 @@ def features(table):
     its errors are estimated at all."""
     scenes = _scenes(table)
     ratios = np.array([estimate.scene_ratios(s, s.coatings[0]) for s in scenes]).T
-    estimated = np.array([estimate.not_estimated(s, s.coatings[0]) is None for s in scenes])
+    estimated = np.array([estimate.not_estimated(s, s.coatings[0], calibrated=False) is None
+                          for s in scenes])
     return ratios, estimated
 
 
@@ -133,6 +134,7 @@ def fit(table):
     plateau = float(np.median(-stretch[stiff_coating]))
     bond = np.abs(error("stretch_shell", "bond"))
     judged = bond > JUDGED
+    shares = [estimate.indenter_share(scene) for scene in _scenes(table)]
     return estimate.Calibration(
         shell_contact=_shell_constants(x, c, q, error("shell", "contact")),
         shell_bond=_shell_constants(x, c, q, error("shell", "bond")),
@@ -140,7 +142,9 @@ def fit(table):
         stretch_soft_coating=(float(np.exp(log_fit[0])), float(log_fit[1])),
         stretch_stiff_coating=(plateau / float(x[stiff_coating].min()) ** 2, plateau),
         stretch_bond=float(np.exp(np.mean(np.log(bond[judged] / x[judged] ** 2)))),
-        stretch_shear=_saturating_constants(g, x, error("stretch_shell", "shear")))
+        stretch_shear=_saturating_constants(g, x, error("stretch_shell", "shear")),
+        indenter_share=(float(min(shares)), float(max(shares))),
+        thickest=float(x.max()))
 
 
 def rounded(calibration, digits=4):
@@ -407,8 +411,9 @@ def calibrated_range(calibration):
     """The span of each of the estimate's ratios (estimate.scene_ratios) over the
     calibration rows the estimate covers: where it is calibrated."""
     ratios, estimated = features(calibration)
+    shares = np.array([estimate.indenter_share(scene) for scene in _scenes(calibration)])
     return {name: (float(values[estimated].min()), float(values[estimated].max()))
-            for name, values in zip("xcqgp", ratios)}
+            for name, values in zip("xcqgps", (*ratios, shares))}
 
 
 def _family_sections(report, family, calibration, held_out, validation, tolerance):
@@ -422,8 +427,11 @@ def _family_sections(report, family, calibration, held_out, validation, toleranc
             f"{spans['c'][0]:.3g}-{spans['c'][1]:.3g}, E*/G2 (g) = "
             f"{spans['g'][0]:.3g}-{spans['g'][1]:.3g} and the Poisson share p = "
             f"{spans['p'][0]:.3g}-{spans['p'][1]:.3g} (estimate.py's ratios; the "
-            "coating's Poisson ratio within the estimate's 0.1-0.4); outside these an "
-            "estimate is an extrapolation.")
+            "coating's Poisson ratio within the estimate's 0.1-0.4), with the indenter's "
+            f"stiffness against the base's (estimate.indenter_share) "
+            f"{spans['s'][0]:.3g}-{spans['s'][1]:.3g}. Outside the spans of h2/a and of the "
+            "indenter's stiffness the estimate is not made (auto takes the 2D coating); "
+            "outside the others it is an extrapolation.")
     if calibration is not None and held_out is not None:
         _accuracy_section(report, family, pd.concat([calibration, held_out],
                                                     ignore_index=True))

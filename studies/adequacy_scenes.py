@@ -7,7 +7,7 @@ cylinder, orchestrate/scenes/sphere.toml, and its relatives). Each family has
     calibration  the grid, a smaller grid over the coating's Poisson ratio and
                  development scenes: what the estimate's constants are fitted on
     held-out     scenes neither the estimate's forms nor its constants saw: what auto is
-                 judged on
+                 judged on (plane strain: with the gallery's engineers' scenes)
 
 Each scene is a (label, scene) pair; the label keys its row in the family's CSVs.
 """
@@ -69,7 +69,12 @@ def plane_development_scenes():
              (1 / 64, 1.0), (1 / 128, 0.1), (0.3, 0.15), (0.05, 7.0),
              (1 / 48, 0.7), (1 / 96, 3.0), (1 / 64, 0.05), (0.8, 3.0), (0.9, 8.0),
              (0.125, 0.5, {"nu2": 0.2}),
-             (0.125, 1.0, {"E3": 0.5}), (0.0625, 0.3, {"E1": 3.0})]
+             (0.125, 1.0, {"E3": 0.5}), (0.0625, 0.3, {"E1": 3.0}),
+             # the indenter's stiffness against the base's, from a soft indenter to a
+             # rigid one (added when the gallery's near-rigid scenes fell outside)
+             (0.125, 1.0, {"E1": 1000.0}), (0.0625, 0.5, {"E1": 10.0}),
+             (0.25, 4.0, {"indenter.rigid": True}), (0.0625, 2.0, {"indenter.rigid": True}),
+             (0.125, 2.0, {"E3": 3.0}), (0.125, 0.5, {"E1": 0.3})]
     scenes = _paper(paper)
     shallow = [(1 / 16, 0.2), (1 / 8, 1.0), (1 / 4, 5.0), (1 / 32, 0.5)]
     scenes += [(f"paper stamp/4 h2={h2:g} E2={E2:g}",
@@ -108,7 +113,21 @@ def plane_held_out_scenes():
                           (None, 0.1, 0.25, 0.02), (None, 1 / 48, 0.6, 0.02)], name="roller")
     scenes += _cylinders([(None, 0.0625, 2.0, 0.02), (None, 0.1, 0.5, 0.02),
                           (None, 0.0625, 0.4, 0.003)], name="discrete")
-    return scenes
+    return scenes + gallery_scenes()
+
+
+GALLERY_WITHOUT_REFERENCE = ("dlc_on_large_steel_part",)   # a 1 um film on a part 24 a
+                               # wide: the reference's uniform meshes cannot hold its 2D
+                               # coating (over 2e5 face samples at level 1)
+
+
+def gallery_scenes():
+    """The engineers' scenes of orchestrate/scenes/gallery/ (mm and MPa: near-rigid and
+    rigid indenters, hard and polymer coatings, large bodies, rollers, patches with bare
+    base between them), as their files give them; those a reference can be made for."""
+    return [(f"gallery {path.stem}", load_scene(path)[0])
+            for path in sorted((SCENES_DIR / "gallery").glob("*.toml"))
+            if path.stem not in GALLERY_WITHOUT_REFERENCE]
 
 
 # ---- axisymmetric -----------------------------------------------------------------------------
