@@ -1,9 +1,9 @@
 """model = "auto" (orchestrate/model/estimate.py, orchestrate/run/plan.py): the a priori contact half-width, the
 estimate of each coating model's error against a measured one, and the choice.
 
-The estimate's constants were fitted on the calibration set (studies/adequacy.py);
-its check here is on a scene of the held-out set, which neither its forms nor its
-constants saw, measured against the mesh-converged 2D model
+The estimate's constants were fitted on the calibration sets (studies/adequacy.py);
+its check here is on scenes of the held-out sets, which neither its forms nor its
+constants saw, measured against the 2D model on the same mesh
 (studies/model_errors.py): paper h2 = 0.45 b, E2 = 0.3 E, where the Timoshenko shell
 is 25 % too stiff in contact stress, 29 % on the bond's normal stress and 18 % off in
 its shear, the stretch shell 0.9 %, 0.7 % and 46 % (all judged: above 0.2 %); and a
@@ -20,7 +20,7 @@ import pytest
 
 from orchestrate.model import estimate
 from orchestrate.run import plan
-from studies.model_errors import measure, peaks, with_model
+from studies.model_errors import peaks, with_model
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
 from tests.conftest import PROJECT_DIR
@@ -60,42 +60,32 @@ def test_no_load_no_contact_every_model_exact():
     assert {estimate.worst_error(e) for e in errors.values()} == {0.0}
 
 
-def test_the_estimate_is_within_twice_the_measured_error_on_a_held_out_scene():
-    scene = paper_scene(h2=0.45, E2=0.3)
-    measured = measure("held out", scene)
-    estimated = estimate.estimated_errors(scene, scene.coatings[0])
-    for model in ("shell", "stretch_shell"):
-        for quantity, column in (("contact", "peak"), ("bond", "bond_peak"),
-                                 ("shear", "bond_shear")):
-            error = abs(measured[f"{model}_error_{column}"])
-            assert error > 0.002, (model, quantity)
-            assert 0.5 <= estimated[model][quantity] / error <= 2.0, (
-                model, quantity, estimated[model][quantity], error)
-    assert abs(measured["elastic_error_peak"]) < 1e-3       # the 2D model: its mesh only
-
-
-def test_the_estimate_is_within_twice_the_measured_error_on_a_held_out_sphere():
-    """The axisymmetric family (estimate.REVOLUTION) on a scene of its held-out set
-    (studies/adequacy_scenes.py): a sphere on a compliant coating disc, h2 = 0.18 b,
-    E2 = 0.2 E, contact radius about 1 b. A model's own error is its answer over the 2D
-    coating's on the same mesh (the mesh's error, which both share, drops out: what the
-    estimate is fitted to). Every answer whose error exceeds 0.2 % is judged: the
-    shell's three (15 %, 17 % and 34 % when measured) and the stretch shell's bond
-    stress and shear (0.33 %, 27 %)."""
-    scene = apply_overrides(_scene("sphere"), {"h2": 0.18, "E2": 0.2})
+@pytest.mark.parametrize("scene, judged", [
+    (paper_scene(h2=0.45, E2=0.3), 6),
+    (apply_overrides(_scene("sphere"), {"h2": 0.18, "E2": 0.2}), 5),
+], ids=["paper h2 = 0.45 b, E2 = 0.3 E", "sphere h2 = 0.18 b, E2 = 0.2 E"])
+def test_the_estimate_is_within_twice_the_measured_error_on_a_held_out_scene(scene, judged):
+    """A model's own error is its answer over the 2D coating's on the same mesh (the
+    mesh's error, which both share, drops out: what the estimate is fitted to). Every
+    answer whose error exceeds 0.2 % is judged. Plane (estimate.PLANE): all six, the
+    shell 25 % too stiff in contact stress, 29 % on the bond's normal stress, 18 % off
+    in its shear, the stretch shell 0.9 %, 0.7 % and 46 % (when measured). The sphere
+    on a compliant coating disc, contact radius about 1 b (estimate.REVOLUTION): the
+    shell's three (15 %, 17 %, 34 %) and the stretch shell's bond stress and shear
+    (0.33 %, 27 %)."""
     found = {model: peaks(with_model(scene, model), 1)
              for model in ("elastic", "shell", "stretch_shell")}
     estimated = estimate.estimated_errors(scene, scene.coatings[0])
-    judged = 0
+    count = 0
     for model in ("shell", "stretch_shell"):
         for quantity, column in (("contact", "peak"), ("bond", "bond_peak"),
                                  ("shear", "bond_shear")):
             error = abs(found[model][column] / found["elastic"][column] - 1)
             if error > 0.002:
-                judged += 1
+                count += 1
                 assert 0.5 <= estimated[model][quantity] / error <= 2.0, (
                     model, quantity, estimated[model][quantity], error)
-    assert judged == 5
+    assert count == judged
 
 
 @pytest.mark.parametrize("scene, reason", [
