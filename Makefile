@@ -87,13 +87,19 @@ run: setup
 	$(PYTHON) -m orchestrate solve --overwrite --model shell --h2 0.125 --E2 1 --out results/default
 	$(PYTHON) -m orchestrate plot results/default
 
+# The tests run in TEST_JOBS processes (pytest-xdist), a test file to one process so that
+# a module's shared runs are made once; every test checks only its own processes and
+# folders, so they may share the machine.
+TEST_JOBS ?= $(shell n=$$(nproc); [ $$n -gt 4 ] && n=4; echo $$n)
+PYTEST := $(PYTHON) -m pytest -q -n $(TEST_JOBS) --dist loadfile
+
 test: setup
-	$(PYTHON) -m pytest -q tests
+	$(PYTEST) tests
 
 # The everyday subset: the forms, the scene and its units, hostile input, the loop's
 # pieces, one Robin-equals-monolithic check (under a minute); `make test` runs them all.
 test-fast: setup
-	$(PYTHON) -m pytest -q -m "not slow" tests
+	$(PYTEST) -m "not slow" tests
 
 # Speed against accuracy on the figure scenes (about 15 minutes; the fine references
 # are computed once into results/reference/): results/bench.csv, speed_accuracy.png;
