@@ -390,7 +390,12 @@ def _solve(args):
                     f"estimated error of the {answers_text(settings.model_answers)} "
                     f"{100 * patch['estimated_error']:.2g} %, tolerance "
                     f"{100 * settings.model_tolerance:g} %")
-        _say(f"coating[{patch['patch']}]: model auto chose {patch['model']} ({estimate})")
+        if patch.get("fallback_from"):
+            _say(f"coating[{patch['patch']}]: model auto chose {patch['fallback_from']} "
+                 f"({estimate}), then solved it again as {patch['model']}: "
+                 f"{patch['fallback_reason']}")
+        else:
+            _say(f"coating[{patch['patch']}]: model auto chose {patch['model']} ({estimate})")
     units = summary["units"]
     for line in describe(summary["answers"], units):
         _say(line)

@@ -190,8 +190,10 @@ def judge(table):
 
 
 def timed_choice(auto_scene, settings):
-    """Solve a scene of "auto" patches and the model it chose (Robin loop):
-    (chosen models, the estimate, seconds auto, seconds direct)."""
+    """Solve a scene of "auto" patches and the model it solved them with (Robin loop):
+    (the models solved, those auto chose before any work, seconds auto, seconds direct).
+    They differ where the run solved a shell patch again as the 2D coating (its pressure
+    gathered at the contact's edges: orchestrate/run/solve.py)."""
     with tempfile.TemporaryDirectory() as auto_out, tempfile.TemporaryDirectory() as direct_out:
         start = time.perf_counter()
         summary = solve(auto_scene, settings, auto_out + "/run")
@@ -201,7 +203,7 @@ def timed_choice(auto_scene, settings):
         solve(chosen, settings, direct_out + "/run")
         seconds_direct = time.perf_counter() - start
     patches = summary["model_choice"]["patches"]
-    return ([p["model"] for p in patches], max(p["estimated_error"] for p in patches),
+    return ([p["model"] for p in patches], [p.get("fallback_from", p["model"]) for p in patches],
             seconds_auto, seconds_direct)
 
 
@@ -217,7 +219,10 @@ def validate(held_out, settings=Settings()):
     the models chosen, their estimate and measured error in those answers
     ({answers}_chosen, _chosen_estimate, _chosen_measured, _meets_tolerance); under the
     settings' own answers also solved through the Robin loop and timed against the
-    chosen model run directly (seconds_auto, seconds_direct, cost_ratio)."""
+    chosen model run directly (seconds_auto, seconds_direct, cost_ratio), the models the
+    run solved with (solved: a shell solved again as the 2D coating where its pressure
+    gathered at the contact's edges) and their measured error (solved_measured, which
+    _meets_tolerance judges under those answers)."""
     table = judge(held_out)
     for i, row in held_out.iterrows():
         scene = with_model(scene_from_dict(json.loads(row.scene)), plan.AUTO)
@@ -232,15 +237,19 @@ def validate(held_out, settings=Settings()):
             table.loc[i, f"{answers}_chosen_measured"] = measured
             said.append(f"on the {answers} answers {'/'.join(models)}, measured "
                         f"{100 * measured:.2f} %")
-        models, _, seconds_auto, seconds_direct = timed_choice(scene, settings)
-        assert "/".join(models) == table.loc[i, f"{settings.model_answers}_chosen"]
+        solved, chosen, seconds_auto, seconds_direct = timed_choice(scene, settings)
+        assert "/".join(chosen) == table.loc[i, f"{settings.model_answers}_chosen"]
+        table.loc[i, "solved"] = "/".join(solved)
+        table.loc[i, "solved_measured"] = chosen_error(held_out.loc[[i]], solved,
+                                                       settings.model_answers)
         table.loc[i, "seconds_auto"] = seconds_auto
         table.loc[i, "seconds_direct"] = seconds_direct
         print(f"{row.label}: auto chose " + "; ".join(said) + f"; {seconds_auto:.2f} s "
               f"against {seconds_direct:.2f} s", flush=True)
     for answers in estimate.ANSWERS:
-        table[f"{answers}_meets_tolerance"] = (table[f"{answers}_chosen_measured"]
-                                               <= settings.model_tolerance)
+        measured = table["solved_measured" if answers == settings.model_answers
+                         else f"{answers}_chosen_measured"]
+        table[f"{answers}_meets_tolerance"] = measured <= settings.model_tolerance
     table["cost_ratio"] = table.seconds_auto / table.seconds_direct
     return table
 
@@ -258,9 +267,14 @@ def verdict(validation):
              "scenes_not_estimated": int(not_estimated.sum()),
              "worst_cost_ratio": float(validation.cost_ratio.max()),
              "median_cost_ratio": float(validation.cost_ratio.median())}
+    solved_with = Settings().model_answers          # the answers the runs were judged on
     for answers in estimate.ANSWERS:
+        measured = validation["solved_measured" if answers == solved_with
+                              else f"{answers}_chosen_measured"]
         found[f"{answers}_meets_tolerance"] = float(validation[f"{answers}_meets_tolerance"].mean())
-        found[f"{answers}_worst_chosen_error"] = float(validation[f"{answers}_chosen_measured"].max())
+        found[f"{answers}_worst_chosen_error"] = float(measured.max())
+    found["solved_again"] = int((validation.solved
+                                 != validation[f"{solved_with}_chosen"]).sum())
     return found
 
 
@@ -458,6 +472,11 @@ def _family_sections(report, family, calibration, held_out, validation, toleranc
                 f"{int(validation[f'{answers}_meets_tolerance'].sum())} of {len(validation)} "
                 f"scenes (largest measured error "
                 f"{percent_g(found[f'{answers}_worst_chosen_error'])}).")
+        report.finding(
+            f"Runs that solved a shell patch again as the 2D coating, its pressure gathered "
+            f"at the contact's edges (default answers): {found['solved_again']} of "
+            f"{len(validation)}; the tolerance above is judged on the model each run solved "
+            "with.")
         report.finding(
             f"Auto's wall time over the chosen model's run directly (default answers): median "
             f"{found['median_cost_ratio']:.2f}, worst {found['worst_cost_ratio']:.2f} (one run "

@@ -46,7 +46,8 @@ from orchestrate.run import answers
 from orchestrate.run.coarse_level import CoarseLevel
 from orchestrate.run.outputs import RunFiles, history_table, shell_table
 from orchestrate.run.plan import prepare
-from orchestrate.run.validity import Say, elements_across, forms_edited_warning, run_warnings
+from orchestrate.run.validity import (Say, edge_peak, elements_across, forms_edited_warning,
+                                      run_warnings)
 from orchestrate.run.warm_start import start_state
 from orchestrate.workers import freefem
 from orchestrate.workers.provenance import forms_hashes, provenance
@@ -82,8 +83,67 @@ def solve_run(scene, settings, out_dir, progress=None, overwrite=False, start_fr
     too large for the machine, or an output folder another run holds or is writing
     (``overwrite`` replaces an earlier run's folder whole). Then RunFailed (after
     writing the report) if the loop does not converge, SystemFailure if a worker or a
-    file fails. The folder appears only once complete (orchestrate/files/folders.py)."""
+    file fails. The folder appears only once complete (orchestrate/files/folders.py).
+
+    A patch whose model auto chose as a shell, on which the run finds the contact
+    pressure peaking at its zone's edge (validity.edge_peak: an answer the shells'
+    estimate does not cover), is solved again with the 2D coating before anything is
+    written; summary.json's model_choice says so in its entry (fallback_from, _reason)."""
     freefem.executable()             # a missing FreeFEM is reported before any work
+    fallbacks = []
+    while True:
+        try:
+            return _solve_once(scene, settings, out_dir, progress, overwrite, start_from,
+                               session, sweep_point, start_name, strict, keep, fallbacks)
+        except _ModelFallback as fallback:
+            fallbacks.append(fallback.record)
+            scene = scene.with_models(["elastic" if n == fallback.record["patch"] else c.model
+                                       for n, c in enumerate(scene.coatings, start=1)])
+
+
+class _ModelFallback(Exception):
+    """An "auto" patch whose shell the run found outside its estimate (its record)."""
+
+    def __init__(self, record):
+        super().__init__(record["reason"])
+        self.record = record
+
+
+def _auto_fallback(model_choice, problem, results, contact_x1, contact_stress):
+    """The record of an "auto" patch to solve again with the 2D coating (None: none):
+    the contact pressure peaks at its zone's edge on a shell auto chose."""
+    if model_choice is None:
+        return None
+    found = edge_peak(problem, results["answers"]["contact"].get("peak_pressure"),
+                      results["contact_zones"], contact_x1, contact_stress)
+    chosen = {patch["patch"]: patch for patch in model_choice["patches"]}
+    if not found or found[0] not in chosen:
+        return None
+    return {"patch": found[0], "model": chosen[found[0]]["model"], "report": model_choice,
+            "reason": "the contact pressure peaks near the edge of its contact zone on the "
+                      "patch, where the shells' estimate does not hold (edge_contact_peak)"}
+
+
+def _with_fallbacks(report, fallbacks):
+    """The model choice's report of a run solved again (``report``: its own choice of
+    the patches still "auto", or None): the first choice's, every patch as solved, a
+    fallen-back patch's entry saying the model auto chose first and why it was left
+    (summary.json's wall_time_s counts the runs left)."""
+    first = fallbacks[0]["report"]
+    patches = {patch["patch"]: patch for patch in first["patches"]}
+    patches.update((patch["patch"], patch) for patch in (report or {}).get("patches", []))
+    for fallback in fallbacks:
+        patches[fallback["patch"]] = dict(patches[fallback["patch"]], model="elastic",
+                                          fallback_from=fallback["model"],
+                                          fallback_reason=fallback["reason"])
+    return dict(first, patches=[patches[n] for n in sorted(patches)])
+
+
+def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, session,
+                sweep_point, start_name, strict, keep, fallbacks):
+    """solve_run's run of one choice of models (``fallbacks``: the patches solved again
+    with the 2D coating so far): _ModelFallback for a patch to solve again, before its
+    folder is written."""
     plan = prepare(scene, settings)
     if strict and plan.warnings:
         raise WarnedBeforeWork(list(plan.warnings))
@@ -147,7 +207,8 @@ def solve_run(scene, settings, out_dir, progress=None, overwrite=False, start_fr
             "scene": to_dict(scene),         # as solved: "auto" patches with their model
             "settings": to_dict(settings),
             "strategy": strategy.record(scales, scene.units),
-            "model_choice": model_choice,
+            "model_choice": (_with_fallbacks(model_choice, fallbacks) if fallbacks
+                             else model_choice),
             "status": loop.status,
             "reason": loop.reason,
             "converged": loop.converged,
@@ -178,13 +239,19 @@ def solve_run(scene, settings, out_dir, progress=None, overwrite=False, start_fr
         if loop.converged:
             results, contact_x1, contact_stress = _write_results(problem, loop, outputs,
                                                                  run_files)
+            model_fallback = _auto_fallback(model_choice, problem, results, contact_x1,
+                                            contact_stress)
+            if model_fallback is not None:    # the folder is discarded, not committed
+                model_fallback["seconds"] = time.perf_counter() - started
+                raise _ModelFallback(model_fallback)
             summary.update(results)
             summary["warnings"] += run_warnings(problem, results, contact_x1, contact_stress,
                                                 Say(scales, scene.units))
         if forms_hashes() != forms:
             summary["warnings"].append(forms_edited_warning())
         summary = scaled_summary(summary, scales)
-        summary["wall_time_s"] = time.perf_counter() - started
+        summary["wall_time_s"] = (time.perf_counter() - started    # with the runs left
+                                  + sum(fallback["seconds"] for fallback in fallbacks))
         run_files.write_summary(summary, scene.units)
         checkpoint("committing")
         folder.commit()
