@@ -92,7 +92,14 @@ def test_auto_solves_again_with_the_2d_coating_where_its_shell_gathers_the_load(
     stretch = _solve(path, {**overrides, "coating.model": "stretch_shell"}, tmp_path / "stretch")
     assert abs(_peak(stretch)["value"] / _peak(direct)["value"] - 1) > 0.05
     assert "edge_contact_peak" in _codes(stretch)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["auto", "elastic", "stretch"]
+    # started from the stretch shell's run: its interface points are the 2D coating's,
+    # so the run solved again starts from it too
+    scene, settings = scene_and_settings(path, overrides, {})
+    warm = solve(scene, settings, tmp_path / "warm", start_from=tmp_path / "stretch")
+    assert warm["model_choice"]["patches"][0]["fallback_from"] == "stretch_shell"
+    assert warm["started_from"] == str(tmp_path / "stretch")
+    assert _peak(warm)["value"] == pytest.approx(_peak(direct)["value"], rel=1e-6)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["auto", "elastic", "stretch", "warm"]
     assert auto["wall_time_s"] > 0
 
 
