@@ -101,14 +101,16 @@ def _shell_constants(x, c, q, error):
                  np.linalg.lstsq(columns * weight[:, None], error * weight, rcond=None)[0])
 
 
-def _saturating_constants(ratio, x, error):
-    """S, s, t of the share S ratio^s x^t whose share / (1 + share) is |error|: least
-    squares on log share over the rows above JUDGED (the share of an error below 1)."""
+def _saturating_constants(ratio, x, share, error):
+    """S, s, t, r of the share S ratio^s x^t exp(r (share - 1/2)) whose share / (1 +
+    share) is |error|: least squares on log share over the rows above JUDGED (the share
+    of an error below 1)."""
     judged = (np.abs(error) > JUDGED) & (np.abs(error) < 1.0)
-    share = np.abs(error[judged]) / (1.0 - np.abs(error[judged]))
-    columns = np.array([np.ones(judged.sum()), np.log(ratio[judged]), np.log(x[judged])]).T
-    log_S, s, t = np.linalg.lstsq(columns, np.log(share), rcond=None)[0]
-    return float(np.exp(log_S)), float(s), float(t)
+    target = np.abs(error[judged]) / (1.0 - np.abs(error[judged]))
+    columns = np.array([np.ones(judged.sum()), np.log(ratio[judged]), np.log(x[judged]),
+                        share[judged] - 0.5]).T
+    log_S, s, t, r = np.linalg.lstsq(columns, np.log(target), rcond=None)[0]
+    return float(np.exp(log_S)), float(s), float(t), float(r)
 
 
 def fit(table):
@@ -119,7 +121,8 @@ def fit(table):
     the median |error| of the rows below -JUDGED (too soft: stiff thick coatings) and
     T = P / x^2 at the smallest x among them; its bond B as the geometric mean of
     |error| / x^2 over the rows above JUDGED; both shells' bond shear
-    (_saturating_constants, in p for the shell, g for the stretch shell)."""
+    (_saturating_constants, in p for the shell, g for the stretch shell, both in the
+    indenter's share)."""
     (x, c, q, g, p), estimated = features(table)
     table, x, c, q, g, p = (table[estimated], x[estimated], c[estimated], q[estimated],
                             g[estimated], p[estimated])
@@ -134,15 +137,15 @@ def fit(table):
     plateau = float(np.median(-stretch[stiff_coating]))
     bond = np.abs(error("stretch_shell", "bond"))
     judged = bond > JUDGED
-    shares = [estimate.indenter_share(scene) for scene in _scenes(table)]
+    shares = np.array([estimate.indenter_share(scene) for scene in _scenes(table)])
     return estimate.Calibration(
         shell_contact=_shell_constants(x, c, q, error("shell", "contact")),
         shell_bond=_shell_constants(x, c, q, error("shell", "bond")),
-        shell_shear=_saturating_constants(p, x, error("shell", "shear")),
+        shell_shear=_saturating_constants(p, x, shares, error("shell", "shear")),
         stretch_soft_coating=(float(np.exp(log_fit[0])), float(log_fit[1])),
         stretch_stiff_coating=(plateau / float(x[stiff_coating].min()) ** 2, plateau),
         stretch_bond=float(np.exp(np.mean(np.log(bond[judged] / x[judged] ** 2)))),
-        stretch_shear=_saturating_constants(g, x, error("stretch_shell", "shear")),
+        stretch_shear=_saturating_constants(g, x, shares, error("stretch_shell", "shear")),
         indenter_share=(float(min(shares)), float(max(shares))),
         thickest=float(x.max()))
 
