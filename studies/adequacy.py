@@ -492,10 +492,16 @@ def _family_sections(report, family, calibration, held_out, validation, toleranc
                 rows.append({"model": model, "quantity": quantity, "judged": len(judged),
                              "within": int(judged.sum())})
                 for i in judged.index[judged == 0]:
+                    # the bond shear's reference is the least converged answer: how far
+                    # it moved at its last refinement bounds what a miss can say
+                    moved = (f" (the reference moved "
+                             f"{percent_g(abs(held_out.reference_bond_shear_change[i]))} at "
+                             "its last refinement)"
+                             if quantity == "shear" and held_out is not None else "")
                     misses.append(f"{validation.label[i]} ({MODEL_NAMES[model]}, {quantity} "
                                   f"stress): {percent_g(validation[f'{name}_measured'][i])} "
                                   f"measured, {percent_g(validation[f'{name}_estimated'][i])} "
-                                  "estimated")
+                                  f"estimated{moved}")
         report.table(rows, [
             Column("model", "model", MODEL_NAMES.get), Column("quantity", "quantity"),
             Column("judged", "judged", "{:g}", f"scenes where the measured error exceeds "
