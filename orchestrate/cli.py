@@ -90,6 +90,9 @@ _SETTINGS_HELP = {
                             "many interface unknowns, weighted by its dofs over the largest "
                             "worker's",
     "auto_two_level_mesh_level": "auto iterates with two levels from this mesh level up",
+    "auto_fallback_work": "a stalled iteration auto chose falls back to the direct solve "
+                          "only where probing the maps costs at most this many "
+                          "dof-columns (interface unknowns times dofs, summed over workers)",
     "active_set_tolerance": "relative change at which the active-set loop updates its "
                             "contact set",
     "predicted_set_tolerance": "the same where the first contact set is the one predicted "

@@ -266,6 +266,14 @@ def _maps_would_pay(problem, settings):
                for weighted in _weighted_unknowns(problem).values())
 
 
+def _probe_work(problem):
+    """What probing every worker's Robin map costs: its interface unknowns (a
+    back-substitution each) times its estimated dofs, summed (dof-columns)."""
+    dofs = estimated_dofs(problem)
+    return float(sum(sum(problem.interfaces[i].size * problem.interfaces[i].components
+                         for i, _ in problem.sides_of(name)) * dofs[name] for name in dofs))
+
+
 def _weighted_unknowns(problem):
     """{subdomain: its interface unknowns times its estimated dofs over the largest's}."""
     dofs = estimated_dofs(problem)
@@ -301,14 +309,22 @@ def _inner_solve(settings, problem, coarse, contrast=False):
     if settings.method == PAPER:
         return InnerSolve(asked, NO_INNER_SOLVE, "the paper's loop updates its contact set "
                           "at every iteration: no fixed point to solve", None, NO_INNER_SOLVE)
-    fallback = DIRECT if asked == "auto" and settings.workers == "persistent" else None
+    fallback, affordable = None, ""
+    if asked == "auto" and settings.workers == "persistent":
+        work = _probe_work(problem)
+        if work <= settings.auto_fallback_work:
+            fallback = DIRECT
+        else:
+            affordable = (f"; no direct fallback: probing every worker's map would cost "
+                          f"{work:.3g} dof-columns, above auto_fallback_work "
+                          f"{settings.auto_fallback_work:.3g}")
     if settings.two_levels:
         rule = ("asked" if asked == TWO_LEVEL else f"auto: mesh_level {settings.mesh_level}"
                 f" >= auto_two_level_mesh_level {settings.auto_two_level_mesh_level}")
         if coarse is not None and paired(problem.interfaces, coarse.interfaces):
-            return InnerSolve(asked, TWO_LEVEL, rule, fallback, TWO_LEVEL)
+            return InnerSolve(asked, TWO_LEVEL, rule + affordable, fallback, TWO_LEVEL)
         return InnerSolve(asked, ITERATE, rule + ", but the coarse level's interfaces do not "
-                          "pair up with the fine ones", fallback, ITERATE)
+                          "pair up with the fine ones" + affordable, fallback, ITERATE)
     if asked in (DIRECT, ITERATE):
         return InnerSolve(asked, asked, "asked", None, asked)
     if settings.workers == "fresh":
@@ -322,7 +338,7 @@ def _inner_solve(settings, problem, coarse, contrast=False):
                       f"auto: {without_coarse}direct where every new worker's interface unknowns, weighted by "
                       f"its dofs over the largest worker's, are at most auto_direct_unknowns "
                       f"{settings.auto_direct_unknowns}, else iterate; decided once the "
-                      "workers started", fallback)
+                      "workers started" + affordable, fallback)
 
 
 def _coarse_rule(settings):

@@ -80,6 +80,9 @@ KNOB_RANGES = {
                              "maps outgrows any machine"),
     "auto_two_level_mesh_level": (1, MESH_LEVEL_LIMIT + 1, "mesh level", "1: two levels on "
                                   "every mesh; above mesh_level's limit: never"),
+    "auto_fallback_work": (0.0, 1e12, "dof-columns", "0: a stalled iteration never falls "
+                           "back; beyond, probing the maps takes hours and their dense "
+                           "interface system outgrows the machine's memory"),
     "active_set_tolerance": SET_TOLERANCE_RANGE,
     "predicted_set_tolerance": SET_TOLERANCE_RANGE,
     "estimate_margin": (1.0, 1e3, "factor", "below 1 the estimate drops under the error "
@@ -594,6 +597,14 @@ class Settings:
                                     # (probing costs a back-substitution per unknown)
     auto_two_level_mesh_level: int = 2  # auto iterates with two levels from this mesh
                                     # level up (there probing maps costs more)
+    auto_fallback_work: float = 1e9  # dof-columns: an iteration auto chose that stalls
+                                    # falls back to the direct solve only where probing
+                                    # every worker's map costs at most this much (its
+                                    # interface unknowns times its dofs, summed): minutes
+                                    # (the near-rigid cylinder at mesh level 3, 3.2e8,
+                                    # took 111 s and 1 GB solved directly; a 5 um 2D
+                                    # coating at level 3, 1.5e10, grew past 12 GB);
+                                    # beyond, the run stops stagnated and says why
     # the active-set loop:
     active_set_tolerance: float = 1e-2  # relative change at which the contact set is
                                     # updated (eps_u once a set recurs): enough to tell

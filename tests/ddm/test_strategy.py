@@ -70,7 +70,7 @@ REPLACED_CONSTANTS = {
 # Knobs added since: hold_contrast 4, a side holds its inactive points only on a body
 # at least 4 times as stiff as its neighbour (the figures' scenes, solved directly,
 # hold every side as before).
-ADDED_KNOBS = {"hold_contrast": 4.0}
+ADDED_KNOBS = {"hold_contrast": 4.0, "auto_fallback_work": 1e9}
 INTEGER_KNOBS = [key for key, value in REPLACED_CONSTANTS.items() if isinstance(value, int)]
 
 
@@ -501,3 +501,21 @@ def test_auto_leaves_the_coarse_level_out_under_contrast():
     assert equal.inner_solve.planned == TWO_LEVEL
     asked = prepare(scene, Settings(mesh_level=2, inner_solve="two-level")).strategy
     assert asked.inner_solve.planned == TWO_LEVEL          # asked, it is kept
+
+
+def test_a_stalled_iteration_falls_back_only_where_the_maps_are_affordable():
+    """auto's direct fallback probes every worker's map: where that costs more than
+    auto_fallback_work dof-columns (interface unknowns times dofs, summed) it is not
+    planned, and the rule says why. A 5 um 2D coating on a roller at mesh level 2: 4.4e9
+    dof-columns (a run of it at level 3 that fell back grew past 12 GB); the paper's
+    scene at level 2 keeps it, at 9e6."""
+    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "coated_roller.toml",
+                                  {"coating.model": "elastic"})
+    big = prepare(scene, Settings(mesh_level=2)).strategy.inner_solve
+    assert big.planned == TWO_LEVEL and big.fallback is None
+    assert "no direct fallback" in big.rule and "auto_fallback_work" in big.rule
+    small = prepare(paper_scene(model="elastic"), Settings(mesh_level=2)).strategy.inner_solve
+    assert small.fallback == DIRECT and "no direct fallback" not in small.rule
+    none = prepare(paper_scene(model="elastic"),
+                   Settings(mesh_level=2, auto_fallback_work=0.0)).strategy.inner_solve
+    assert none.fallback is None
