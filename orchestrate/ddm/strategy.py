@@ -24,7 +24,8 @@ from typing import Optional
 
 from orchestrate.ddm.coarse import coarse_element_size, paired
 from orchestrate.ddm.robin_parameters import contrast_exceeds, side_parameters
-from orchestrate.mesh.problem_size import estimated_dofs
+from orchestrate.mesh.problem_size import (GIB, estimated_dofs, interface_system_memory,
+                                            memory_limit)
 
 PAPER, ACTIVE_SET = "paper", "active-set"
 COATED_BASE = "coated_base"          # the worker of the base with its coatings
@@ -311,13 +312,17 @@ def _inner_solve(settings, problem, coarse, contrast=False):
                           "at every iteration: no fixed point to solve", None, NO_INNER_SOLVE)
     fallback, affordable = None, ""
     if asked == "auto" and settings.workers == "persistent":
-        work = _probe_work(problem)
-        if work <= settings.auto_fallback_work:
-            fallback = DIRECT
-        else:
+        work, memory = _probe_work(problem), interface_system_memory(problem)
+        limit, what = memory_limit(settings)
+        if work > settings.auto_fallback_work:
             affordable = (f"; no direct fallback: probing every worker's map would cost "
                           f"{work:.3g} dof-columns, above auto_fallback_work "
                           f"{settings.auto_fallback_work:.3g}")
+        elif limit is not None and memory > limit:
+            affordable = (f"; no direct fallback: its dense interface system would take "
+                          f"{memory / GIB:.1f} GiB, above {what}")
+        else:
+            fallback = DIRECT
     if settings.two_levels:
         rule = ("asked" if asked == TWO_LEVEL else f"auto: mesh_level {settings.mesh_level}"
                 f" >= auto_two_level_mesh_level {settings.auto_two_level_mesh_level}")

@@ -8,6 +8,11 @@ A P2 vector field has about 4 unknowns per triangle. Memory: MEMORY_PER_DOF per 
 (measured: 430 MB for an 86 000-dof body at mesh level 4, with MUMPS's factors) and
 MEMORY_PER_WORKER per FreeFEM process. A run is refused before any work when its
 estimate exceeds Settings.memory_limit (default: 3/4 of the memory free now).
+
+A direct solve of each contact set holds, in the driver, dense matrices of the interface
+state: about MEMORY_PER_INTERFACE_PAIR bytes per pair of interface unknowns (measured:
+1.0 GB at the peak for the near-rigid cylinder's 3848 at mesh level 3), which
+interface_system_memory counts against the same limit.
 """
 
 import math
@@ -22,6 +27,7 @@ TRIANGLE_AREA = 0.45
 MEMORY_PER_DOF = 6e3        # bytes
 MEMORY_PER_WORKER = 100e6   # bytes
 GIB = 2.0 ** 30
+MEMORY_PER_INTERFACE_PAIR = 64.0   # bytes: two dense copies of (2 n)^2 doubles
 
 
 def body_triangles(plan):
@@ -75,18 +81,35 @@ def available_memory():
     return None
 
 
+def memory_limit(settings):
+    """(bytes, the limit in words) a run may take: Settings.memory_limit, else 3/4 of
+    the memory free now; (None, None) where that cannot be told."""
+    if settings.memory_limit is not None:
+        return settings.memory_limit * GIB, f"memory_limit = {settings.memory_limit:g} GiB"
+    free = available_memory()
+    if free is None:
+        return None, None
+    return 0.75 * free, f"3/4 of the {free / GIB:.1f} GiB free (memory_limit)"
+
+
+def interface_unknowns(problem):
+    """The interface unknowns of every side of every interface."""
+    return sum(2 * i.size * i.components for i in problem.interfaces)
+
+
+def interface_system_memory(problem):
+    """Bytes a direct solve of each contact set holds in the driver (the module's
+    docstring)."""
+    return MEMORY_PER_INTERFACE_PAIR * interface_unknowns(problem) ** 2
+
+
 def check_size(problem):
     """Refuse a problem whose estimated memory exceeds the limit, before any work."""
     dofs = estimated_dofs(problem)
     memory = sum(MEMORY_PER_DOF * n + MEMORY_PER_WORKER for n in dofs.values())
-    limit = problem.settings.memory_limit
-    if limit is not None:
-        limit_bytes, what = limit * GIB, f"memory_limit = {limit:g} GiB"
-    else:
-        free = available_memory()
-        if free is None:
-            return dofs
-        limit_bytes, what = 0.75 * free, f"3/4 of the {free / GIB:.1f} GiB free (memory_limit)"
+    limit_bytes, what = memory_limit(problem.settings)
+    if limit_bytes is None:
+        return dofs
     if memory > limit_bytes:
         largest = max(dofs, key=dofs.get)
         raise ParameterError(
@@ -97,3 +120,16 @@ def check_size(problem):
             "(mesh_level, element_size), thicken a 2D coating, or raise memory_limit",
             "mesh_level")
     return dofs
+
+
+def check_direct_size(problem):
+    """Refuse a direct solve (asked: inner_solve = "direct") whose dense interface
+    system exceeds the limit, before any work."""
+    memory = interface_system_memory(problem)
+    limit_bytes, what = memory_limit(problem.settings)
+    if limit_bytes is not None and memory > limit_bytes:
+        raise ParameterError(
+            f"inner_solve = \"direct\": its dense interface system of "
+            f"{interface_unknowns(problem)} interface unknowns is estimated at "
+            f"{memory / GIB:.1f} GiB, above {what}: iterate (inner_solve = \"iterate\" or "
+            "\"auto\"), coarsen the mesh or raise memory_limit", "inner_solve")

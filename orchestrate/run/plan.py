@@ -24,9 +24,9 @@ from dataclasses import dataclass, replace
 
 from orchestrate.ddm.coarse import coarse_settings
 from orchestrate.ddm.robin_parameters import contrast_exceeds
-from orchestrate.ddm.strategy import plan_strategy
+from orchestrate.ddm.strategy import DIRECT, plan_strategy
 from orchestrate.mesh.discretization import discretize
-from orchestrate.mesh.problem_size import check_size, estimated_dofs
+from orchestrate.mesh.problem_size import check_direct_size, check_size, estimated_dofs
 from orchestrate.model.estimate import (ANSWERS, contact_half_width, estimated_errors,
                                         not_estimated, predicted_half_width, worst_error)
 from orchestrate.model.scene import MESH_LEVEL_LIMIT, check_compatible
@@ -119,6 +119,8 @@ def prepare(scene, settings):
     check_size(problem)
     coarse = discretize(solved, coarse_settings(settings)) if settings.two_levels else None
     strategy = plan_strategy(settings, problem, coarse, predicted, contrast)
+    if strategy.inner_solve.planned == DIRECT:     # asked: its dense system must fit
+        check_direct_size(problem)
     chosen = scene.with_models([c.model for c in solved.coatings])
     say = Say(scales, scene.units)
     return Plan(chosen, problem, model_choice, scales,

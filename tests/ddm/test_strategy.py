@@ -519,3 +519,19 @@ def test_a_stalled_iteration_falls_back_only_where_the_maps_are_affordable():
     none = prepare(paper_scene(model="elastic"),
                    Settings(mesh_level=2, auto_fallback_work=0.0)).strategy.inner_solve
     assert none.fallback is None
+
+
+def test_a_direct_solve_whose_interface_system_outgrows_the_memory_is_refused():
+    """Asked for, the direct solve of a 5 um 2D coating on a roller (7280 interface
+    unknowns: its dense interface system about 3.4 GB) under a 2.5 GiB memory_limit,
+    which the workers' own estimate (about 1.8 GB) meets: refused before any work, naming
+    inner_solve; iterated, it is planned; auto plans no direct fallback there."""
+    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "coated_roller.toml",
+                                  {"coating.model": "elastic"})
+    with pytest.raises(ParameterError) as refused:
+        prepare(scene, Settings(inner_solve="direct", memory_limit=2.5))
+    assert refused.value.key == "inner_solve" and "GiB" in str(refused.value)
+    assert prepare(scene, Settings(inner_solve="iterate", memory_limit=2.5))
+    auto = prepare(scene, Settings(memory_limit=2.5)).strategy.inner_solve
+    assert auto.fallback is None and "dense interface system" in auto.rule
+    assert prepare(scene, Settings(memory_limit=8.0)).strategy.inner_solve.fallback == DIRECT
