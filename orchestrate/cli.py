@@ -388,11 +388,11 @@ def _solve(args):
               file=sys.stderr)
         return EXIT_FAILED
     for patch in (summary["model_choice"] or {}).get("patches", []):
+        error = patch.get("fallback_estimated_error", patch["estimated_error"])
         estimate = (f"1D models not estimated: {patch['not_estimated']}"
                     if patch["not_estimated"] else
                     f"estimated error of the {answers_text(settings.model_answers)} "
-                    f"{100 * patch['estimated_error']:.2g} %, tolerance "
-                    f"{100 * settings.model_tolerance:g} %")
+                    f"{100 * error:.2g} %, tolerance {100 * settings.model_tolerance:g} %")
         if patch.get("fallback_from"):
             _say(f"coating[{patch['patch']}]: model auto chose {patch['fallback_from']} "
                  f"({estimate}), then solved it again as {patch['model']}: "

@@ -127,14 +127,17 @@ def _auto_fallback(model_choice, problem, results, contact_x1, contact_stress):
 def _with_fallbacks(report, fallbacks):
     """The model choice's report of a run solved again (``report``: its own choice of
     the patches still "auto", or None): the first choice's, every patch as solved, a
-    fallen-back patch's entry saying the model auto chose first and why it was left
-    (summary.json's wall_time_s counts the runs left)."""
+    fallen-back patch's entry saying the model auto chose first, its estimate and why it
+    was left, its estimated_error the 2D coating's (summary.json's wall_time_s counts the
+    runs left)."""
     first = fallbacks[0]["report"]
     patches = {patch["patch"]: patch for patch in first["patches"]}
     patches.update((patch["patch"], patch) for patch in (report or {}).get("patches", []))
     for fallback in fallbacks:
-        patches[fallback["patch"]] = dict(patches[fallback["patch"]], model="elastic",
+        first = patches[fallback["patch"]]
+        patches[fallback["patch"]] = dict(first, model="elastic", estimated_error=0.0,
                                           fallback_from=fallback["model"],
+                                          fallback_estimated_error=first["estimated_error"],
                                           fallback_reason=fallback["reason"])
     return dict(first, patches=[patches[n] for n in sorted(patches)])
 

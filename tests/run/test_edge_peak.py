@@ -83,6 +83,7 @@ def test_auto_solves_again_with_the_2d_coating_where_its_shell_gathers_the_load(
     (patch,) = auto["model_choice"]["patches"]
     assert patch["fallback_from"] == "stretch_shell" and patch["model"] == "elastic"
     assert patch["estimated_errors"]["stretch_shell"]["contact"] < 0.01   # what it believed
+    assert patch["fallback_estimated_error"] < 0.01 and patch["estimated_error"] == 0.0
     assert "edge" in patch["fallback_reason"]
     assert auto["scene"]["coatings"][0]["model"] == "elastic"
     assert "edge_contact_peak" not in _codes(auto)
