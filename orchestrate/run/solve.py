@@ -134,10 +134,10 @@ def _with_fallbacks(report, fallbacks):
     patches = {patch["patch"]: patch for patch in first["patches"]}
     patches.update((patch["patch"], patch) for patch in (report or {}).get("patches", []))
     for fallback in fallbacks:
-        first = patches[fallback["patch"]]
-        patches[fallback["patch"]] = dict(first, model="elastic", estimated_error=0.0,
+        chosen = patches[fallback["patch"]]
+        patches[fallback["patch"]] = dict(chosen, model="elastic", estimated_error=0.0,
                                           fallback_from=fallback["model"],
-                                          fallback_estimated_error=first["estimated_error"],
+                                          fallback_estimated_error=chosen["estimated_error"],
                                           fallback_reason=fallback["reason"])
     return dict(first, patches=[patches[n] for n in sorted(patches)])
 

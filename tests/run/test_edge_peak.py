@@ -80,7 +80,9 @@ def test_auto_solves_again_with_the_2d_coating_where_its_shell_gathers_the_load(
     summary says, and the answer is the 2D coating's own run's."""
     path, overrides = THIN_HARD_ON_POLYMER
     auto = _solve(path, overrides, tmp_path / "auto")
-    (patch,) = auto["model_choice"]["patches"]
+    choice = auto["model_choice"]           # the first choice's report, the patch as solved
+    assert choice["tolerance"] == 0.01 and list(choice["answers_judged"]) == ["contact", "bond"]
+    (patch,) = choice["patches"]
     assert patch["fallback_from"] == "stretch_shell" and patch["model"] == "elastic"
     assert patch["estimated_errors"]["stretch_shell"]["contact"] < 0.01   # what it believed
     assert patch["fallback_estimated_error"] < 0.01 and patch["estimated_error"] == 0.0
