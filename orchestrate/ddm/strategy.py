@@ -267,21 +267,24 @@ def _maps_would_pay(problem, settings):
                for weighted in _weighted_unknowns(problem).values())
 
 
+def _unknowns_and_dofs(problem):
+    """{subdomain: (its interface unknowns, its estimated dofs)}."""
+    dofs = estimated_dofs(problem)
+    return {name: (sum(problem.interfaces[i].size * problem.interfaces[i].components
+                       for i, _ in problem.sides_of(name)), dofs[name]) for name in dofs}
+
+
 def _probe_work(problem):
     """What probing every worker's Robin map costs: its interface unknowns (a
     back-substitution each) times its estimated dofs, summed (dof-columns)."""
-    dofs = estimated_dofs(problem)
-    return float(sum(sum(problem.interfaces[i].size * problem.interfaces[i].components
-                         for i, _ in problem.sides_of(name)) * dofs[name] for name in dofs))
+    return float(sum(n * dofs for n, dofs in _unknowns_and_dofs(problem).values()))
 
 
 def _weighted_unknowns(problem):
     """{subdomain: its interface unknowns times its estimated dofs over the largest's}."""
-    dofs = estimated_dofs(problem)
-    largest = max(dofs.values())
-    return {name: float(sum(problem.interfaces[i].size * problem.interfaces[i].components
-                            for i, _ in problem.sides_of(name)) * dofs[name] / largest)
-            for name in dofs}
+    sizes = _unknowns_and_dofs(problem)
+    largest = max(dofs for _, dofs in sizes.values())
+    return {name: float(n * dofs / largest) for name, (n, dofs) in sizes.items()}
 
 
 def _workers(problem, inside):
