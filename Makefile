@@ -10,8 +10,9 @@
 #                   on held-out plane and axisymmetric scenes (results/adequacy/)
 #   make gallery    the engineers' scenes against the monolithic solve (results/gallery.md)
 #   make iterations iterations per contact set against the mesh level (results/iterations.md)
-#   make line-contact  the field below a line contact against McEwen's closed form
-#                   (results/line_contact_field.md)
+#   make line-contact  the field below a line contact, frictionless and sliding, against
+#                   McEwen's closed form (results/line_contact_field.md)
+#   make friction   iterations with friction against without (results/friction_iterations.md)
 #   make indentation  a ball on coated steel: indentation curves and stresses
 #                   (results/indentation.md), and spheres against Hertz and a coated
 #                   half-space reference (results/sphere_layered.md)
@@ -22,7 +23,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations indentation line-contact
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations indentation line-contact friction
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -141,6 +142,9 @@ indentation: setup
 # the frictional scenes: studies/line_contact_stresses.py): results/line_contact_field.md
 line-contact: setup
 	$(PYTHON) -m studies.line_contact_field
+
+friction: setup
+	$(PYTHON) -m studies.friction_iterations
 
 # Iterations per contact set of the gallery's scenes at mesh levels 1-3, the coatings
 # inside the base's worker and exchanged across their bonds (results/iterations.md)

@@ -33,7 +33,8 @@ def limits_on_axis(interface, stress):
     Hertz pressure that its neighbours met to 0.03 %) replaced by the field's limit
     there: a normal stress is even in r, A + B r^2 through the next two points (the
     first element's midpoint and end), a shear odd, 0."""
-    if interface.weight[0] != 0.0 or interface.position[0, 0] != 0.0:
+    if (interface.weight[0] != 0.0 or interface.position[0, 0] != 0.0
+            or interface.kind == "friction"):      # no friction in a scene of revolution
         return stress
     stress = np.array(stress, dtype=float)
     normal = stress if interface.kind == "contact" else stress[1]

@@ -63,11 +63,18 @@ class RobinLaw:
     other_u: np.ndarray
     other_t: np.ndarray
     constant: np.ndarray
+    # a friction side's data also takes its contact's normal stress (the mean of the
+    # contact's two tractions) times ``by_pressure``: contact, its interface index
+    contact: int = None
+    by_pressure: np.ndarray = None
 
-    def data(self, u, u_other, t_other):
+    def data(self, u, u_other, t_other, t_contact=None):
         """g for the side's trace u and the other side's u', t' (shape (points,) or
-        (components, points)), of shape (components, points)."""
+        (components, points)), and a friction side's contact stress, of shape
+        (components, points)."""
         g = self.own * u + self.other_u * u_other + self.other_t * t_other + self.constant
+        if self.contact is not None:
+            g = g + self.by_pressure * t_contact
         return np.atleast_2d(g)
 
 
@@ -98,6 +105,16 @@ def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=()):
     every gamma theta must stay below 1 (Settings refuses gamma theta >= 1.5 for the
     largest, and gamma_B / gamma_A > 0 keeps the second term away).
 
+    Friction (full sliding): on a friction interface both sides feel, along their
+    tangents, the traction q = -mu sigma_n where their contact's Psi = 1 (sigma_n its
+    normal stress, compression negative: q = mu p), else 0. A traction is a Neumann
+    condition, which a Robin side takes as its own trace plus the traction over gamma:
+        friction, either side:  alpha = gamma Psi (or gamma, held),
+                                g = u + Psi q / gamma,  sigma_n = (t_A + t_B) / 2
+    of the contact, so that t = alpha (g - u) = q at the fixed point, where the
+    contact's two tractions equal its law's: the discrete problem the monolithic solve
+    assembles, q with the penalty's sigma_n (freefem/monolithic.edp).
+
     A side that holds its inactive points: alpha = gamma on all of the contact, and
     where Psi = 0 the data is the side's own trace, g = u^k. The fixed point is the same
     (there t = gamma (u - u) = 0), but its matrix does not depend on Psi: its worker
@@ -112,6 +129,12 @@ def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=()):
             c = 1.0 - gamma * theta
             if i in inside:
                 law = RobinLaw(zeros, zeros, zeros, zeros, np.zeros((2, n)))
+            elif interface.kind == "friction":
+                active = psi_of[interface.contact] > 0
+                held = parameter.hold_inactive or direct
+                law = RobinLaw(np.full(n, gamma) if held else gamma * psi_of[interface.contact],
+                               ones, zeros, zeros, np.zeros((1, n)), interface.contact,
+                               np.where(active, -interface.friction / gamma, 0.0))
             elif interface.kind == "contact":
                 active = psi_of[i] > 0
                 if parameter.hold_inactive or direct:
@@ -134,8 +157,10 @@ def robin_data(layout, x, laws):
     data = {}
     for (i, side), law in laws.items():
         other = 1 - side
+        t_contact = (None if law.contact is None else
+                     0.5 * (layout.get(x, "t", law.contact, 0) + layout.get(x, "t", law.contact, 1)))
         g = law.data(layout.get(x, "u", i, side), layout.get(x, "u", i, other),
-                     layout.get(x, "t", i, other))
+                     layout.get(x, "t", i, other), t_contact)
         data[i, side] = (law.alpha, g)
     return data
 

@@ -9,9 +9,13 @@ Interfaces:
                       the base), two components: tangential and normal displacement;
     contact-coatingI  the indenter (side A) over patch I's top (side B);
     contact-baseJ     the indenter over the J-th stretch of bare base (from left to
-                      right) inside the contact zone.
+                      right) inside the contact zone;
+    friction-...      under friction (Scene.frictional), one per contact, at its points:
+                      the tangential displacements of the same two sides, which carry
+                      the friction traction the contact's pressure sets (robin.py).
 
-Contact interfaces come first, ordered along the face, then bonds, patch by patch.
+Contact interfaces come first, ordered along the face, then bonds, patch by patch, then
+the friction interfaces in their contacts' order.
 Every interface is a set of points shared by its two sides: the P2 nodes of its
 elements (ends and midpoints) with Simpson's weights of the face's arc length, so that
 the Robin loop and the monolithic solve integrate every coupling term alike and the
@@ -21,8 +25,11 @@ nodes, and the contact pressure oscillated near the edge of the contact zone; at
 nodes it is smooth and the contact set settles in fewer updates.) Each side evaluates its trace
 at its own place for each point: a body at the point of its (polygonal) mesh, a shell
 at its mid-line's xi (ShellSpec: an arc length, or a shell of revolution's radius); a
-contact trace is the displacement along the side's outward normal (towards the other
-body), a bond trace the tangential and normal components in the face's basis (t, n).
+contact trace is the displacement along the side's outward normal n (towards the other
+body), a friction trace the displacement along the side's tangent (n2, -n1) (the
+face's tangent t on the partner, -t on the indenter: the two sides' sum is the slip,
+and the traction is the same number on both, as a contact's pressure is), a bond trace
+the tangential and normal components in the face's basis (t, n).
 
 Elements along the faces have the length Settings.element_size / mesh_level; where
 that is not given, it is sized to the contact (Settings.sized_to: contact_elements across
@@ -73,7 +80,7 @@ class Side:
 @dataclass(frozen=True, eq=False)
 class Interface:
     name: str
-    kind: str                  # "contact" or "bond"
+    kind: str                  # "contact", "bond" or "friction"
     s: np.ndarray              # points: arc length along the base's top face
     position: np.ndarray       # (n, 2): the points on the partner (contact) or base (bond) face
     normal: np.ndarray         # (n, 2): unit normal of that face, towards the indenter
@@ -82,6 +89,10 @@ class Interface:
     gap: np.ndarray            # initial gap along the normal (zero on a bond)
     sides: tuple               # (Side A, Side B)
     mismatch: np.ndarray = None  # contact: angle (rad) between the paired faces' normals
+    # friction: Coulomb's mu at each point (the traction is -mu times the contact's
+    # normal stress, compression negative) and the index of its contact interface
+    friction: np.ndarray = None
+    contact: int = None
 
     @property
     def size(self):
@@ -89,7 +100,7 @@ class Interface:
 
     @property
     def components(self):
-        return 1 if self.kind == "contact" else 2
+        return 2 if self.kind == "bond" else 1
 
     def integrate(self, values):
         return float(np.dot(self.weight, values))
@@ -173,6 +184,10 @@ class Problem:
     @property
     def bonds(self):
         return [i for i in self.interfaces if i.kind == "bond"]
+
+    @property
+    def frictions(self):
+        return [i for i in self.interfaces if i.kind == "friction"]
 
 
 # ---- elements along the face -----------------------------------------------------------
@@ -431,7 +446,7 @@ def discretize(scene, settings):
         bonds.append(Interface(f"bond-{name}", "bond", s, position, normal, tangent, weight,
                                np.zeros_like(s), (coating_side, base_side)))
 
-    interfaces = tuple(contacts + bonds)
+    interfaces = tuple(contacts + bonds + _friction_interfaces(scene, contacts))
     # the finest element on any face, as length / elements (the mesh's size field)
     face_size = min(float(i.s[-1] - i.s[0]) / ((i.size - 1) // 2) for i in interfaces)
     grading = None
@@ -455,6 +470,32 @@ def discretize(scene, settings):
                                           grading))
     return Problem(scene, settings, ordered, interfaces, lowest,
                    settings.theta / scene.modulus, settings.robin_parameter * scene.modulus)
+
+
+def _friction_interfaces(scene, contacts):
+    """Under friction, an interface per contact at its points (its index in the
+    problem's interfaces, contacts coming first): each side's displacement along its
+    tangent (n2, -n1), the indenter's -t, the partner's t (a shell's top face: v +
+    h2 gamma / 2)."""
+    if not scene.frictional:
+        return []
+    frictions = []
+    for k, contact in enumerate(contacts):
+        indenter, partner = contact.sides
+        n = contact.size
+        coating = (scene.coatings[int(partner.subdomain[len("coating"):]) - 1]
+                   if partner.subdomain.startswith("coating") else None)
+        if coating is not None and coating.model in SHELL_MODELS:
+            along = _shell_coefficients(n, coating, 1.0, 0.0, 0.5 * coating.thickness, 0.0)
+        else:
+            along = contact.tangent.copy()
+        frictions.append(Interface(
+            "friction-" + contact.name[len("contact-"):], "friction", contact.s,
+            contact.position, contact.normal, contact.tangent, contact.weight,
+            np.zeros(n), (Side("indenter", indenter.place, (-contact.tangent,)),
+                          Side(partner.subdomain, partner.place, (along,))),
+            friction=np.full(n, float(scene.friction)), contact=k))
+    return frictions
 
 
 def _xi_origin(scene, nodes):

@@ -299,6 +299,9 @@ def not_estimated(scene, coating, a=None, calibrated=True):
     """Why the 1D models' errors are not estimated for this patch (None: they are);
     ``calibrated``: also where the scene lies outside the span its family's constants
     were fitted on (indenter_share, h2/a; studies/adequacy.py fits with it off)."""
+    if scene.frictional:
+        return ("friction: the estimate is calibrated on frictionless contacts (the "
+                "friction traction loads the coating's top in shear)")
     low, high = NU2_CALIBRATED
     if not low <= coating.nu <= high:
         return f"coating Poisson ratio {coating.nu:g} outside the calibrated [{low:g}, {high:g}]"

@@ -11,6 +11,9 @@ A scene is an indenter pressed on a base that carries any number of coating patc
               Timoshenko-type shell (a shell of revolution in an axisymmetric scene) or
               as a 2D elastic body
     Load      the stamp's descent, or the total force per unit width
+    Friction  Coulomb's coefficient mu on every contact, with the indenter sliding
+              steadily towards +x1 (full sliding: the friction traction is mu p,
+              against the indenter's motion, wherever the bodies touch)
 
 Lengths are in units of b and moduli in units of E (METHOD.md); the scene files of
 orchestrate/scenes/ write them out (orchestrate/model/scene_file.py reads them). Every object
@@ -43,6 +46,9 @@ LENGTH_RANGE = (1e-6, 1e6)     # b: sizes, positions (in absolute value), thickn
 RADIUS_LIMIT = 1e12            # b
 LARGEST_LOAD = 1e6             # a descent in b, a force in E b
 SHEAR_FACTOR_RANGE = (1e-3, 1e3)   # k' of the shell
+# Coulomb's mu: metals in air reach about 1, clean metals in vacuum more; beyond 2 the
+# friction traction would exceed twice the pressure, no contact of coated parts does
+FRICTION_RANGE = (0.0, 2.0)
 PROFILES = ("circle", "parabola")
 FACE_MESHES = ("shaped", "flat")
 SHAPES = ("block", "roller")
@@ -316,7 +322,12 @@ class Scene:
     the load a total force (E b^2).
     ``contact_zone``: the x1 range where the indenter may touch the coatings or the
     bare base (default: wherever its face is over the base); a run whose contact
-    reaches an end of it that is not the end of a face fails."""
+    reaches an end of it that is not the end of a face fails.
+    ``friction``: Coulomb's coefficient mu on every contact; ``sliding``: the indenter
+    slides steadily towards +x1 over the base (full sliding: the friction traction
+    mu p wherever the bodies touch, the indenter dragging the surfaces it touches
+    along). Friction needs sliding (partial slip is not solved yet) and sliding a full
+    plane model (symmetric = false): the friction traction breaks the mirror symmetry."""
 
     indenter: Indenter
     base: Base
@@ -326,6 +337,8 @@ class Scene:
     contact_zone: Optional[tuple] = None
     axisymmetric: bool = False
     units: Units = Units()         # the file's units (orchestrate/model/units.py); default b, E
+    friction: float = 0.0          # Coulomb's mu on every contact
+    sliding: bool = False          # the indenter slides towards +x1 (full sliding)
 
     def __post_init__(self):
         _require(isinstance(self.units, Units), "units",
@@ -348,6 +361,7 @@ class Scene:
             coating.check(f"coating[{number}].")
         self._check_magnitudes()
         self._check_layout()
+        self._check_friction()
 
     def _lengths(self):
         """(key, value) of every length of the scene, in its units."""
@@ -466,6 +480,28 @@ class Scene:
                  f"{softest} = {moduli[softest]!r} must be at least {stiffest} / "
                  f"{MODULUS_RATIO:g} = {moduli[stiffest] / MODULUS_RATIO:g}: the coupled "
                  "problem's conditioning grows with the moduli's ratio")
+
+    def _check_friction(self):
+        """Friction on a full plane model under full sliding: what the solver covers."""
+        _require(isinstance(self.sliding, bool), "sliding",
+                 f"sliding = {self.sliding!r} must be true or false")
+        low, high = FRICTION_RANGE
+        _require(_finite(self.friction) and not isinstance(self.friction, bool)
+                 and low <= self.friction <= high, "friction",
+                 f"friction = {self.friction!r} must be a number in [{low:g}, {high:g}] "
+                 "(Coulomb's mu)")
+        _require(self.friction == 0 or self.sliding, "sliding",
+                 f"friction = {self.friction!r} needs sliding = true: the solver covers "
+                 "full sliding (the friction traction mu p wherever the bodies touch); "
+                 "partial slip under a tangential force below mu P is not solved yet")
+        _require(not self.sliding or not self.symmetric, "symmetric",
+                 "sliding = true needs symmetric = false: the friction traction breaks the "
+                 "mirror symmetry of a half model (model the whole scene)")
+
+    @property
+    def frictional(self):
+        """Whether any contact carries a friction traction."""
+        return self.sliding and self.friction > 0
 
     def _check_revolution(self):
         """What a scene of bodies of revolution (axisymmetric) cannot have."""
@@ -834,6 +870,14 @@ def check_compatible(scene, settings):
     _require(not (scene.load.force is not None and settings.method == "paper"), "method",
              "method = 'paper' cannot carry load.force: the paper's loop leaves the indenter "
              "unsupported while no point is in contact; use method = 'active-set'")
+    if scene.frictional:
+        _require(settings.method != "paper", "method",
+                 "method = 'paper' is frictionless (the paper's loop); friction needs "
+                 "method = 'active-set'")
+        _require(settings.inner_solve in ("auto", "iterate"), "inner_solve",
+                 f"inner_solve = {settings.inner_solve!r} with friction: a frictional "
+                 "contact set is solved by iteration (inner_solve = 'iterate' or 'auto'); "
+                 "its direct and two-level solves are not built yet")
 
 
 def to_dict(obj):
@@ -857,5 +901,6 @@ def scene_from_dict(data):
                  load=Load(**data["load"]), symmetric=data["symmetric"],
                  contact_zone=data.get("contact_zone"),
                  axisymmetric=data.get("axisymmetric", False),
-                 units=Units(**data.get("units", {})))     # older summaries: b and E
+                 units=Units(**data.get("units", {})),     # older summaries: b and E
+                 friction=data.get("friction", 0.0), sliding=data.get("sliding", False))
 

@@ -5,6 +5,8 @@ A scene file has the tables of orchestrate/model/scene.py (docs/reference.md, "S
     symmetric = true
     axisymmetric = false           # optional: bodies of revolution, their meridian section
     contact_zone = [0.0, 2.0]      # optional
+    friction = 0.3                 # optional: Coulomb's mu (needs sliding = true)
+    sliding = true                 # optional: the indenter slides towards +x1
     [indenter]   radius, profile, face_mesh, width, height, centre, E, nu, rigid
     [base]       shape, width, height, radius, bore, E, nu
     [[coating]]  start, end, thickness, E, nu, model, shear_factor   (any number)
@@ -38,9 +40,8 @@ LARGEST_FILE = 10_000_000      # bytes of a scene or sweep file (a sweep of 10^5
 PAPER_SCENE_FILE = SCENES_DIR / "paper.toml"
 
 _TABLES = {"indenter": Indenter, "base": Base, "coating": Coating, "load": Load}
-_TOP_LEVEL = ("symmetric", "axisymmetric", "contact_zone", "units", "indenter", "base", "coating",
-              "load",
-              "settings")
+_TOP_LEVEL = ("symmetric", "axisymmetric", "contact_zone", "friction", "sliding", "units",
+              "indenter", "base", "coating", "load", "settings")
 
 # The paper's scene parameters (METHOD.md) as shorthands: name -> (meaning, dotted keys)
 SHORTHANDS = {
@@ -62,7 +63,8 @@ SHORTHANDS = {
     "force": ("total force on the whole body (per unit width; axisymmetric: a force)",
               ("load.force",)),
 }
-_TOP_LEVEL_VALUES = ("symmetric", "axisymmetric", "contact_zone")   # not tables
+_TOP_LEVEL_VALUES = ("symmetric", "axisymmetric", "contact_zone", "friction",
+                     "sliding")   # not tables
 _PATCH_KEY = re.compile(r"^coating\[(\d+)\]\.(\w+)$")
 
 
@@ -125,7 +127,8 @@ def scene_from_table(data, path=None):
             symmetric=data.get("symmetric", True),
             axisymmetric=data.get("axisymmetric", False),
             contact_zone=_zone_in_units(data.get("contact_zone"), units),
-            units=units)
+            units=units, friction=data.get("friction", 0.0),
+            sliding=data.get("sliding", False))
     except ParameterError as error:
         if path and not str(error).startswith(f"{path}:"):
             raise ParameterError(f"{path}: {error}", error.key) from None

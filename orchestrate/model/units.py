@@ -67,6 +67,7 @@ KINDS = {
     "peak_normal_stress": STRESS,
     # forces per unit width (the shell's forces too), moments per unit width
     "T11": FORCE, "T13": FORCE, "T33": FORCE, "force": FORCE, "contact_force": FORCE,
+    "tangential_force": FORCE,
     "interface_force": FORCE, "stamp_reaction": FORCE, "base_reaction": FORCE,
     "total_force": FORCE, "M11": MOMENT,
     # a shell of revolution's forces and moments per unit length of a circle

@@ -47,12 +47,16 @@ def solve_monolithic(problem, workdir):
 def interface_stresses(problem, traces):
     """{interface index: stress} from the traces by the penalty laws: a contact's
     sigma_n = (d - u_A - u_B)^- / theta, a bond's traction on the base (u_A - u_B)/theta
-    as (sigma_t, sigma_n)."""
+    as (sigma_t, sigma_n), a friction interface's -mu sigma_n of its contact."""
     theta, stresses = problem.penalty, {}
     for i, interface in enumerate(problem.interfaces):
         a, b = traces[i, 0], traces[i, 1]
         if interface.kind == "contact":
             stresses[i] = contact_stress(interface.gap, a, b, theta)
+        elif interface.kind == "friction":
+            contact = problem.interfaces[interface.contact]
+            stresses[i] = -interface.friction * contact_stress(
+                contact.gap, traces[interface.contact, 0], traces[interface.contact, 1], theta)
         else:
             stresses[i] = bond_traction(a, b, theta)
         stresses[i] = limits_on_axis(interface, stresses[i])

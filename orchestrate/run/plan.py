@@ -113,7 +113,10 @@ def prepare(scene, settings):
     problem = discretize(solved, settings)
     contrast = (settings.inner_solve == AUTO and settings.two_levels
                 and contrast_exceeds(problem, settings.robin_sides, settings.hold_contrast))
-    if contrast:       # a coarse level would hold every side: one level, its gamma
+    # a coarse level would hold every side (contrast), or has no frictional solve
+    # (strategy._inner_solve): one level, its gamma
+    if contrast or (settings.inner_solve == AUTO and settings.two_levels
+                    and scene.frictional):
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
         problem = discretize(solved, settings)
     check_size(problem)

@@ -4,11 +4,14 @@ Results of a run in its output folder, each file written once, in the scene's un
 and E unless its file has a [units] table; summary.json's "units" names the unit of
 every column; orchestrate/run/outputs.py):
     contact.csv    every contact interface's points: interface, x1, x2, s (arc length
-                   along the base's face), sigma_n (normal stress, compression negative)
+                   along the base's face), sigma_n (normal stress, compression negative),
+                   sigma_t (the friction traction on the base along the face's tangent:
+                   mu p under sliding, 0 without friction)
     interface.csv  every bond's points: interface, x1, x2, s, sigma_n, sigma_t (the
                    traction on the base, in the face's normal and tangential components)
     traces.csv     interface, x1, x2, s and each side's displacement trace: a_n, b_n (a
-                   contact: along each side's outward normal), a_t, a_n, b_t, b_n (a bond:
+                   contact: along each side's outward normal; under friction also a_t,
+                   b_t, along each side's tangent, -t and t), a_t, a_n, b_t, b_n (a bond:
                    the coating's and the base's, in the face's components)
     history.csv    one row per Robin iteration
     summary.json   scene, settings, outcome, answers, forces, peaks, contact zones, units
@@ -297,7 +300,8 @@ def zone_end_reached(problem, psi):
 
 def interface_stresses(layout, state, psi):
     """{interface index: stress} of the state: on a contact sigma_n (points,), on a bond
-    the traction on the base (sigma_t, sigma_n) (2, points).
+    the traction on the base (sigma_t, sigma_n) (2, points), on a friction interface
+    the friction traction on the base along the face's tangent (points,).
 
     Each side's traction is what its own Robin condition imposed in the last solve; the
     two sides agree at convergence, and their mean is written. Off the contact set Psi
@@ -307,8 +311,9 @@ def interface_stresses(layout, state, psi):
     psi_of = dict((i, psi[where]) for i, where in layout.contact_slices())
     for i, interface in enumerate(layout.interfaces):
         t_a, t_b = layout.get(state, "t", i, 0), layout.get(state, "t", i, 1)
-        if interface.kind == "contact":
-            stresses[i] = np.where(psi_of[i] > 0, 0.5 * (t_a + t_b), 0.0)
+        if interface.kind in ("contact", "friction"):
+            active = psi_of[i if interface.kind == "contact" else interface.contact] > 0
+            stresses[i] = np.where(active, 0.5 * (t_a + t_b), 0.0)
         else:
             stresses[i] = 0.5 * (t_b - t_a)
         stresses[i] = limits_on_axis(interface, stresses[i])
@@ -325,19 +330,26 @@ def _write_results(problem, loop, outputs, run_files):
     state = loop.state
     stresses = interface_stresses(layout, state, loop.psi)
     contact_rows, bond_rows, trace_rows = [], [], []
+    friction_of = {f.contact: i for i, f in enumerate(problem.interfaces) if f.kind == "friction"}
     for i, interface in enumerate(problem.interfaces):
         where = {"interface": [interface.name] * interface.size,
                  "x1": interface.position[:, 0], "x2": interface.position[:, 1], "s": interface.s}
         u_a, u_b = layout.get(state, "u", i, 0), layout.get(state, "u", i, 1)
         if interface.kind == "contact":
-            contact_rows.append({**where, "sigma_n": stresses[i]})
-            trace_rows.append({**where, "a_t": np.full(interface.size, np.nan), "a_n": u_a,
-                               "b_t": np.full(interface.size, np.nan), "b_n": u_b})
+            k = friction_of.get(i)
+            none = np.full(interface.size, np.nan)
+            contact_rows.append({**where, "sigma_n": stresses[i], "sigma_t": (
+                np.zeros(interface.size) if k is None else stresses[k])})
+            trace_rows.append({
+                **where, "a_t": none if k is None else layout.get(state, "u", k, 0), "a_n": u_a,
+                "b_t": none if k is None else layout.get(state, "u", k, 1), "b_n": u_b})
+        elif interface.kind == "friction":
+            continue                    # the contact's rows carry it
         else:
             bond_rows.append({**where, "sigma_n": stresses[i][1], "sigma_t": stresses[i][0]})
             trace_rows.append({**where, "a_t": u_a[0], "a_n": u_a[1], "b_t": u_b[0], "b_n": u_b[1]})
     where = ("interface", "x1", "x2", "s")
-    run_files.table("contact.csv", _stack(contact_rows, where + ("sigma_n",)))
+    run_files.table("contact.csv", _stack(contact_rows, where + ("sigma_n", "sigma_t")))
     run_files.table("interface.csv", _stack(bond_rows, where + ("sigma_n", "sigma_t")))
     run_files.table("traces.csv", _stack(trace_rows, where + ("a_t", "a_n", "b_t", "b_n")))
     fields = {}                          # what the answers read of each patch
@@ -350,12 +362,20 @@ def _write_results(problem, loop, outputs, run_files):
             run_files.body(name, outputs[name])
     run_files.collection(problem.subdomains)
 
-    per_interface, contact_force, interface_force = {}, 0.0, 0.0
+    per_interface, contact_force, interface_force, tangential_force = {}, 0.0, 0.0, 0.0
     for i, interface in enumerate(problem.interfaces):
         if interface.kind == "contact":
-            force = -interface.integrate(stresses[i] * interface.normal[:, 1])
+            # the traction on the base: sigma_n n + sigma_t t (friction's sigma_t)
+            k = friction_of.get(i)
+            sigma_t = np.zeros(interface.size) if k is None else stresses[k]
+            force = -interface.integrate(stresses[i] * interface.normal[:, 1]
+                                         + sigma_t * interface.tangent[:, 1])
+            tangential_force += interface.integrate(stresses[i] * interface.normal[:, 0]
+                                                    + sigma_t * interface.tangent[:, 0])
             contact_force += force
             peak = float(np.min(stresses[i]))
+        elif interface.kind == "friction":
+            continue
         else:
             sigma_t, sigma_n = stresses[i]
             force = -interface.integrate(sigma_n * interface.normal[:, 1]
@@ -372,6 +392,9 @@ def _write_results(problem, loop, outputs, run_files):
     return ({
         "answers": _answers(problem, contact_rows, bond_rows, fields),
         "contact_force": contact_force,
+        # the x1 force of the indenter on the base (friction drags it towards +x1; the
+        # halves of a half model cancel)
+        "tangential_force": 0.0 if problem.scene.symmetric else tangential_force,
         "interface_force": interface_force,
         "stamp_reaction": -outputs["indenter"].reactions[LABELS["Stamp"]][1],
         "base_reaction": outputs["base"].reactions[LABELS["Clamped"]][1],

@@ -32,9 +32,15 @@ def state_from_tables(summary, traces, contact, interface, layout):
     scales = dimensionless(scene_from_dict(summary["scene"]))[1]
     blocks, matched = {}, 0
     for i, face in enumerate(layout.interfaces):
-        rows = traces[traces.interface == face.name]
-        stresses = (contact if face.kind == "contact" else interface)
-        stress_rows = stresses[stresses.interface == face.name]
+        # a friction interface's traces and traction are its contact's a_t, b_t, sigma_t
+        name = (face.name if face.kind != "friction"
+                else layout.interfaces[face.contact].name)
+        rows = traces[traces.interface == name]
+        stresses = (interface if face.kind == "bond" else contact)
+        stress_rows = stresses[stresses.interface == name]
+        if face.kind == "friction" and ("sigma_t" not in stress_rows
+                                        or rows.a_t.isna().all()):
+            rows = stress_rows = rows.iloc[:0]      # a frictionless run: nothing to start
         if rows.empty or stress_rows.empty:
             for kind in ("u", "t"):
                 for side in (0, 1):
@@ -45,7 +51,11 @@ def state_from_tables(summary, traces, contact, interface, layout):
         def at(table, column, scale):                # the files are in the run's units
             return np.interp(face.s, table.s.to_numpy() / scales.length,
                              table[column].to_numpy()) / scale
-        if face.kind == "contact":
+        if face.kind == "friction":
+            blocks["u", i, 0] = at(rows, "a_t", scales.length)
+            blocks["u", i, 1] = at(rows, "b_t", scales.length)
+            blocks["t", i, 0] = blocks["t", i, 1] = at(stress_rows, "sigma_t", scales.stress)
+        elif face.kind == "contact":
             blocks["u", i, 0] = at(rows, "a_n", scales.length)
             blocks["u", i, 1] = at(rows, "b_n", scales.length)
             pressure = at(stress_rows, "sigma_n", scales.stress)
@@ -115,7 +125,7 @@ def start_state(start_from, layout):
             refuse(f"{name}.csv holds values that are not finite numbers")
         tables[name] = table
     found = set(tables["traces"].interface)
-    expected = {face.name for face in layout.interfaces}
+    expected = {face.name for face in layout.interfaces if face.kind != "friction"}
     if found != expected:
         refuse(f"its run has the interfaces {sorted(found)}, this scene "
                f"{sorted(expected)}: a run of another layout of bodies and patches cannot "

@@ -40,8 +40,12 @@ def write_problem(problem, files, path, names=None):
         for side in interface.sides:
             position = [k for k, (j, _) in enumerate(problem.sides_of(side.subdomain)) if j == i]
             ends += [names.index(side.subdomain), position[0]]
-        kind = 0 if interface.kind == "contact" else 1
-        lines.append(" ".join(map(str, [kind, *ends])))
-        lines.append(f"{interface.size} " + " ".join(map(repr, interface.gap.tolist())))
+        if interface.kind == "friction":    # its contact, and mu in the gap's place
+            lines.append(" ".join(map(str, [2, *ends, interfaces.index(interface.contact)])))
+            values = interface.friction
+        else:
+            lines.append(" ".join(map(str, [0 if interface.kind == "contact" else 1, *ends])))
+            values = interface.gap
+        lines.append(f"{interface.size} " + " ".join(map(repr, values.tolist())))
     with open(path, "w") as out:
         out.write("\n".join(lines) + "\n")

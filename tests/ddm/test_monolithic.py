@@ -43,6 +43,16 @@ def _off_centre_full_model():
                  coatings=coatings, load=scene.load, symmetric=False)
 
 
+def _sliding(model, friction=0.3, **overrides):
+    """The cylinder scene as a full model, its patch [-2 b, 2 b] a 2D coating or a shell
+    5 times as stiff as the bodies, the indenter sliding towards +x1 under friction
+    (Dundurs' beta of the coated base against the indenter is not 0: the friction
+    traction shifts the pressure)."""
+    scene = _file("cylinder", **{"coating[1].model": model, **overrides})
+    return replace(scene, symmetric=False, friction=friction, sliding=True,
+                   coatings=(replace(scene.coatings[0], start=-2.0),))
+
+
 TIGHT = Settings(eps_u=1e-10)
 CASES = {
     "paper, shell, active-set loop": (paper_scene(), TIGHT),
@@ -116,6 +126,16 @@ CASES = {
     # digits differ from run to run)
     "rigid cylinder on a coated block, force": (
         _file("cylinder", **{"indenter.rigid": True}), Settings(eps_u=1e-7)),
+    # friction, full sliding: the tangential traces carry mu p (robin.robin_laws), the
+    # monolithic matrix the non-symmetric friction block (freefem/monolithic.edp); at
+    # eps_u 1e-8, as a friction side's data holds mu p over its small Robin parameter
+    # (robin_parameters.FRICTION_SHARE), whose rounding holds the estimate near 2e-10
+    "sliding cylinder on a 2D coating, mu 0.3": (_sliding("elastic"), Settings(eps_u=1e-8)),
+    "sliding cylinder on a shell, mu 0.3": (_sliding("shell"), Settings(eps_u=1e-8)),
+    "sliding cylinder 3 E on a stretch shell, mu 0.5": (
+        _sliding("stretch_shell", 0.5, **{"indenter.E": 3.0}), Settings(eps_u=1e-8)),
+    "rigid cylinder sliding on a 2D coating, mu 0.3": (
+        _sliding("elastic", **{"indenter.rigid": True}), Settings(eps_u=1e-7)),
     "rigid cylinder on a coated block, descent, iterated": (
         _file("cylinder", **{"indenter.rigid": True, "load.force": None,
                              "load.displacement": 0.02}),
@@ -148,8 +168,16 @@ def test_robin_loop_equals_monolithic_solve(case):
     bond = pd.read_csv(out / "interface.csv")
     for i, interface in enumerate(problem.interfaces):
         rows = ddm[ddm.interface == interface.name]
+        if interface.kind == "friction":     # its contact's rows carry it
+            name = problem.interfaces[interface.contact].name
+            rows = ddm[ddm.interface == name]
+            pairs = [(rows.a_t, traces[i, 0]), (rows.b_t, traces[i, 1])]
+            mono = stresses[i]
+            computed = contact[contact.interface == name].sigma_t.to_numpy()
         np.testing.assert_allclose(rows.s, interface.s, rtol=0, atol=1e-14)
-        if interface.kind == "contact":
+        if interface.kind == "friction":
+            pass
+        elif interface.kind == "contact":
             pairs = [(rows.a_n, traces[i, 0]), (rows.b_n, traces[i, 1])]
             mono = stresses[i]
             computed = contact[contact.interface == interface.name].sigma_n.to_numpy()
@@ -159,6 +187,9 @@ def test_robin_loop_equals_monolithic_solve(case):
             mono = stresses[i][1]
             computed = bond[bond.interface == interface.name].sigma_n.to_numpy()
         for values, reference in pairs:
+            if not np.any(reference):     # a rigid indenter's tangential trace
+                assert not np.any(values.to_numpy()), interface.name
+                continue
             assert _relative_difference(values.to_numpy(), reference) < 1e-6, interface.name
         if np.max(np.abs(mono)) > 0:
             assert _relative_difference(computed, mono) < 1e-6, interface.name
@@ -178,6 +209,9 @@ def test_forces_balance(case):
         assert abs(summary[name] - force) < 1e-5 * force, name
     if case[2].scene.load.force is not None:
         assert abs(summary["total_force"] / case[2].scene.load.force - 1) < 1e-5
+    # on a flat base the friction force is mu times the normal one (none without it)
+    mu = case[2].scene.friction if case[2].scene.sliding else 0.0
+    assert abs(summary["tangential_force"] - mu * force) < 1e-6 * force
 
 
 def test_every_patch_passes_on_what_it_receives(case):

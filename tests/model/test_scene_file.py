@@ -95,7 +95,19 @@ BAD = [
     ("a bad setting", BASE + "[settings]\nrho = 2.0\n", ["settings.rho = 2.0", "(0, 1]"]),
     ("an unknown setting", BASE + "[settings]\nspeed = 2.0\n", ["settings.speed", "allowed"]),
     ("not TOML", "radius = = 2", ["not a valid TOML file"]),
+    ("friction without sliding", _edit(BASE, "symmetric = true", "symmetric = false\nfriction = 0.3"),
+     ["friction = 0.3 needs sliding = true", "partial slip"]),
+    ("sliding on a half model", "friction = 0.3\nsliding = true\n" + BASE,
+     ["sliding = true needs symmetric = false", "mirror symmetry"]),
+    ("a negative friction", _edit(BASE, "symmetric = true",
+                                  "symmetric = false\nsliding = true\nfriction = -0.1"),
+     ["friction = -0.1", "[0, 2]"]),
+    ("a friction in words", _edit(BASE, "symmetric = true",
+                                  "symmetric = false\nsliding = true\nfriction = \"high\""),
+     ["friction = 'high'", "[0, 2]"]),
 ]
+SLIDING = _edit(_edit(BASE, "symmetric = true", "symmetric = false\nsliding = true\nfriction = 0.3"),
+                "force = 0.02", "displacement = 1e-3")      # the paper's loop takes no force
 
 
 @pytest.mark.parametrize("text, words", [(text, words) for _, text, words in BAD],
@@ -122,6 +134,24 @@ def test_the_command_line_refuses_a_bad_scene_before_any_work(name, tmp_path):
                             text=True, timeout=60)
     assert result.returncode == 2
     assert str(path) in result.stderr and words[0] in result.stderr
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("settings, words", [
+    ("method = \"paper\"", ["method = 'paper' is frictionless"]),
+    ("inner_solve = \"direct\"", ["inner_solve = 'direct' with friction", "'iterate' or 'auto'"]),
+    ("inner_solve = \"two-level\"", ["inner_solve = 'two-level' with friction"]),
+], ids=["the paper's loop", "direct", "two levels"])
+def test_friction_refuses_the_solves_it_has_not_before_any_work(settings, words, tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text(SLIDING + f"[settings]\n{settings}\n")
+    out = tmp_path / "run"
+    result = subprocess.run([sys.executable, "-m", "orchestrate", "solve", "--scene", str(path),
+                             "--out", str(out)], cwd=PROJECT_DIR, capture_output=True,
+                            text=True, timeout=60)
+    assert result.returncode == 2
+    for word in words:
+        assert word in result.stderr, (word, result.stderr)
     assert not out.exists()
 
 

@@ -175,7 +175,8 @@ def test_every_output_says_its_units(twins):
     columns = mm["units"]["columns"]
     written = {name for name in os.listdir(twins[0]) if name.endswith(".csv")}
     assert set(columns) == written
-    assert columns["contact.csv"] == {"x1": "mm", "x2": "mm", "s": "mm", "sigma_n": "MPa"}
+    assert columns["contact.csv"] == {"x1": "mm", "x2": "mm", "s": "mm", "sigma_n": "MPa",
+                                      "sigma_t": "MPa"}
     assert columns["coating1_fields.csv"]["M11"].startswith("MPa mm^2")
     assert columns["history.csv"]["seconds"] == "s"
 
