@@ -34,12 +34,14 @@ from dataclasses import dataclass
 
 NEIGHBOUR, EQUAL = "neighbour", "equal"
 RULES = (NEIGHBOUR, EQUAL)
-# A friction side's Robin parameter over its contact side's. Its traction is given (mu p:
-# a Neumann condition), which a Robin side reaches by relaxation, at each wavelength by
-# the share alpha / (alpha + its body's stiffness there) per iteration: the long waves of
-# a large body, soft, barely moved under the contact's gamma (measured: estimates stuck
-# near 2e-10 on a 4 b block). A small alpha makes each solve nearly the Neumann
-# problem itself; the fixed point does not depend on it.
+# A friction side's Robin parameter over the one its own body would give a neighbour (gamma
+# times its own E* over the stiffer body's). Its traction is given (mu p: a Neumann
+# condition), which a Robin side reaches by relaxation, at each wavelength by the share
+# alpha / (alpha + its body's stiffness there) per iteration: the long waves of a large
+# body, soft, barely moved under the contact's gamma (measured: estimates stuck near
+# 2e-10 on a 4 b block; under a rigid indenter's 1/theta, 90 iterations against 21
+# without friction). A small alpha makes each solve nearly the Neumann problem itself;
+# the fixed point does not depend on it.
 FRICTION_SHARE = 1e-3
 
 
@@ -95,7 +97,9 @@ def side_parameters(problem, gamma, rule, hold_contrast, paper=False, hold_all=F
             hold = not paper and (hold_all or stiffness[own] >= hold_contrast * stiffness[neighbour])
             side_gamma = min(gamma * scale, 1.0 / problem.penalty)
             if interface.kind == "friction":    # held: its alpha is too small to matter
-                side_gamma, hold = FRICTION_SHARE * side_gamma, True
+                own_scale = stiffness[own] / reference if not paper else 1.0
+                side_gamma = FRICTION_SHARE * min(gamma * own_scale, 1.0 / problem.penalty)
+                hold = True
             sides.append(SideParameter(interface.name, side, own, neighbour, side_gamma, hold,
                                        stiffness[neighbour] > hold_contrast * stiffness[own]))
     return tuple(sides)
