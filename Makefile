@@ -13,6 +13,8 @@
 #   make line-contact  the field below a line contact, frictionless and sliding, against
 #                   McEwen's closed form (results/line_contact_field.md)
 #   make friction   iterations with friction against without (results/friction_iterations.md)
+#   make sliding    a cylinder sliding over three patches: the bonds' peel and shear against
+#                   its position, mu = 0, 0.2, 0.5 (results/sliding/)
 #   make indentation  a ball on coated steel: indentation curves and stresses
 #                   (results/indentation.md), and spheres against Hertz and a coated
 #                   half-space reference (results/sphere_layered.md)
@@ -23,7 +25,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations indentation line-contact friction
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations indentation line-contact friction sliding
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -145,6 +147,9 @@ line-contact: setup
 
 friction: setup
 	$(PYTHON) -m studies.friction_iterations
+
+sliding: setup
+	$(PYTHON) -m studies.sliding_patches
 
 # Iterations per contact set of the gallery's scenes at mesh levels 1-3, the coatings
 # inside the base's worker and exchanged across their bonds (results/iterations.md)

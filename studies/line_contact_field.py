@@ -111,8 +111,16 @@ def run_sliding(size, radius, mesh_level, mu):
             "x1": x1, "x1_reference": reference_x, "depth": depth,
             "depth_reference": reference_depth,
             "friction_ratio": result.summary["tangential_force"] / result.summary["total_force"],
+            # the surface's largest tension, behind the contact: McEwen's 2 mu p0 at -a
+            "face_tension": _face_tension(result.summary) / (2 * mu * p0) if mu else np.nan,
+            "face_tension_x1": _face_tension(result.summary, "x1") / a if mu else np.nan,
             "iterations": result.summary["iterations"],
             "nodes": len(result.fields["base"]), "seconds": result.summary["wall_time_s"]}
+
+
+def _face_tension(summary, key="value"):
+    extreme = summary["answers"]["substrate"].get("face_tension")
+    return extreme[key] if extreme else 0.0
 
 
 def run(size, radius, mesh_level):
@@ -177,6 +185,11 @@ def _sliding_section(report, table):
         Column("depth", "its depth (a)", "{:.3f}"),
         Column("depth_reference", "McEwen's depth (a)", "{:.3f}"),
         Column("friction_ratio", "Q / P", "{:.6f}", "the friction force over the normal force"),
+        Column("face_tension", "face tension", "{:.3f}",
+               "the base's largest tension along its face (summary's substrate.face_tension) "
+               "over McEwen's 2 mu p0, at the trailing edge x1 = -a: a cusp, which the nodal "
+               "stresses approach as the square root of the element size"),
+        Column("face_tension_x1", "its x1 (a)", "{:.3f}"),
         Column("iterations", "iterations", "{:g}"), Column("seconds", "time", seconds)])
     below = table[table.depth_reference > 0]
     surface = table[(table.depth_reference == 0) & (table.mu > 0)]

@@ -279,8 +279,10 @@ def _gmsh_body(plan):
         on_face = f"{plan.face_size}"
         if plan.grading is not None:       # the face's own length there (FaceSpacing)
             x_c, y_c, reach, growth, far = plan.grading
-            on_face = (f"Min({plan.face_size} + {growth}*Max(Sqrt((x - {x_c!r})^2 + "
-                       f"(y - {y_c!r})^2) - {reach!r}, 0), {far!r})")
+            # a negative centre in parentheses: gmsh's parser refuses "x - -1.5" (and
+            # aborts the process)
+            on_face = (f"Min({plan.face_size} + {growth}*Max(Sqrt((x - ({x_c!r}))^2 + "
+                       f"(y - ({y_c!r}))^2) - {reach!r}, 0), {far!r})")
         fields.setString(size, "F", f"Min({on_face} + {GROWTH / level}*F{distance}, "
                                     f"{plan.max_size / level})")
         fields.setAsBackgroundMesh(size)

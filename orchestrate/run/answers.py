@@ -3,13 +3,16 @@
     contact     the peak contact pressure (positive), where it is
     bonds       per bond: the largest tensile normal stress (peel), the largest
                 compressive one and the largest shear, each with its position
-    coatings    per patch: the largest von Mises stress and its position (2D model);
+    coatings    per patch: the largest von Mises stress and its position, and the
+                largest tensile stress along its top face (2D model);
                 the fibre stresses at the top and bottom faces and the mean shear from
                 the shell's forces (shell models; a shell of revolution's radial and
                 hoop fibre stresses)
     substrate   the base's largest von Mises stress, where and how deep below its face
-                (under a Hertzian contact it lies below the surface; where the bodies'
-                fields are not computed, none)
+                (under a Hertzian contact it lies below the surface), and the largest
+                tensile stress along its face (under sliding friction, behind the
+                contact: 2 mu p0 on a half-plane); where the bodies' fields are not
+                computed, none
 
 Where a bonded coating ends, the elastic solution is singular (a bi-material wedge): the
 stresses there grow as the mesh refines and have no converged value. Every maximum is
@@ -101,11 +104,47 @@ def bond_answers(scene, x1, x2, sigma_n, sigma_t):
                            ("shear", np.abs(sigma_t), MAGNITUDE)], x1, x2)
 
 
-def coating_answers(scene, nodes):
+def coating_answers(scene, nodes, coating=None):
     """The largest von Mises stress of a 2D patch and its position, from its nodes'
-    x1, x2, sigma_eq (columns by name)."""
-    return _maxima(scene, [("von_mises", np.asarray(nodes["sigma_eq"]), MAGNITUDE)],
-                   nodes["x1"], nodes["x2"])
+    x1, x2, sigma_eq (columns by name), and with ``coating`` (its Coating) the largest
+    tensile stress along its top face (face_tension)."""
+    found = _maxima(scene, [("von_mises", np.asarray(nodes["sigma_eq"]), MAGNITUDE)],
+                    nodes["x1"], nodes["x2"])
+    if coating is not None:
+        height = _height_over_face(scene.base, nodes["x1"], nodes["x2"])
+        _merge(found, _face_tension(scene, nodes, np.abs(height - coating.thickness)
+                                    <= 1e-9 * coating.thickness, near_patch_ends))
+    return found
+
+
+def _height_over_face(base, x1, x2):
+    """A point's height over the base's face (its depth below it, negative)."""
+    x1, x2 = np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
+    return x2 - base.height if base.shape == "block" else np.hypot(x1, x2) - base.radius
+
+
+def _face_tension(scene, nodes, on_face, near_ends):
+    """{"face_tension": ...} (and its end zones' apart) of the nodes ``on_face``: the
+    tangential stress t' sigma t along a face parallel to the base's, t = (n2, -n1)."""
+    x1, x2 = np.asarray(nodes["x1"])[on_face], np.asarray(nodes["x2"])[on_face]
+    if scene.base.shape == "block":
+        t1, t2 = np.ones_like(x1), np.zeros_like(x1)
+    else:
+        radius = np.hypot(x1, x2)
+        t1, t2 = x2 / radius, -x1 / radius
+    s11, s22, s12 = (np.asarray(nodes[name])[on_face] for name in ("s11", "s22", "s12"))
+    along = s11 * t1 ** 2 + 2 * s12 * t1 * t2 + s22 * t2 ** 2
+    return _maxima_where(near_ends(scene, x1), [("face_tension", along, TENSION)], x1, x2)
+
+
+def _merge(found, more):
+    """``more``'s maxima into ``found``, end zones with end zones."""
+    ends = more.pop("at_patch_ends", None)
+    found.update(more)
+    if ends:
+        found.setdefault("at_patch_ends", {"mesh_dependent": True})
+        ends.pop("mesh_dependent")
+        found["at_patch_ends"].update(ends)
 
 
 def substrate_answers(scene, nodes):
@@ -127,6 +166,10 @@ def substrate_answers(scene, nodes):
         if extreme:
             k = int(np.flatnonzero((x1 == extreme["x1"]) & (x2 == extreme["x2"]))[0])
             extreme["depth"] = float(depth[k])
+    if all(name in nodes for name in ("s11", "s22", "s12")):
+        scale = base.height if base.shape == "block" else base.radius
+        _merge(found, _face_tension(scene, nodes, np.abs(depth) <= 1e-9 * scale,
+                                    near_patch_ends))
     return found
 
 

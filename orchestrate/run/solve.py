@@ -431,7 +431,7 @@ def _answers(problem, contact_rows, bond_rows, fields):
         if subdomain.kind == "shell":
             coatings[name] = answers.shell_answers(scene, patch, fields[name])
         else:
-            coatings[name] = answers.coating_answers(scene, fields[name])
+            coatings[name] = answers.coating_answers(scene, fields[name], patch)
     return {"contact": answers.contact_answers(scene, contact["x1"], contact["x2"],
                                                contact["sigma_n"]),
             "bonds": bonds, "coatings": coatings,

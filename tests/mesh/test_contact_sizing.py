@@ -124,3 +124,13 @@ def test_a_compliant_coating_widens_the_predicted_contact():
     assert 16 <= run["elements_across_contact"][0] <= 2 * 32      # sized to it
     tin = prepare(*scene_and_settings(TIN)).problem.scene
     assert predicted_half_width(tin) == contact_half_width(tin)
+
+
+def test_an_indenter_left_of_the_axis_gets_its_graded_mesh():
+    """The size field centred at a negative x1 (gmsh's expression parser refused
+    "x - -0.5" and aborted the process)."""
+    scene, _ = scene_and_settings(SCENES_DIR / "cylinder.toml", {
+        "symmetric": False, "indenter.centre": -0.5})
+    problem = prepare(scene, Settings()).problem
+    mesh = body_mesh(problem.subdomains["base"].plan)
+    assert len(mesh.cells_dict["triangle"]) > 0
