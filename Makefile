@@ -12,7 +12,8 @@
 #   make iterations iterations per contact set against the mesh level (results/iterations.md)
 #   make line-contact  the field below a line contact, frictionless and sliding, against
 #                   McEwen's closed form (results/line_contact_field.md)
-#   make friction   iterations with friction against without (results/friction_iterations.md)
+#   make friction   iterations with friction against without (results/friction_iterations.md),
+#                   the pressure's shift between unlike bodies (results/sliding_shift.md)
 #   make sliding    a cylinder sliding over three patches: the bonds' peel and shear against
 #                   its position, mu = 0, 0.2, 0.5 (results/sliding/)
 #   make indentation  a ball on coated steel: indentation curves and stresses
@@ -147,6 +148,7 @@ line-contact: setup
 
 friction: setup
 	$(PYTHON) -m studies.friction_iterations
+	$(PYTHON) -m studies.sliding_shift
 
 sliding: setup
 	$(PYTHON) -m studies.sliding_patches

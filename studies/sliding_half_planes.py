@@ -4,23 +4,29 @@ reference for the frictional scenes (not a tool of the solver).
 A cylinder of radius R on a half-plane, both elastic (or the cylinder rigid), pressed by
 P per unit width and sliding towards +x, the friction traction mu p on both surfaces (the
 lower body dragged towards +x). Each surface's normal displacement into its body is
-Flamant's (Johnson, Contact Mechanics, eq. 2.24), with u_z > 0 into the body:
+Flamant's, with u_z > 0 into the body:
 
-    u_z(x) = -K int p(s) ln|x - s| ds - (C/2) int q(s) sgn(x - s) ds,
+    u_z(x) = -K int p(s) ln|x - s| ds + (C/2) int q(s) sgn(x - s) ds,
     K = 2 (1 - nu^2) / (pi E),   C = (1 - 2 nu)(1 + nu) / E,
 
-q the tangential traction on that surface along its own x. The lower body takes
-q = mu p along +x; the cylinder, seen in its own frame (x' = -x, z' = -z), also
-mu p along +x', so that its term changes sign in the common x, and the gap
+q the tangential traction on that surface along its own x. The sign of the second term
+follows from the first's partner by Betti's reciprocity: a normal load P draws the
+surface towards itself, u_x = -(C/2) P sgn(x) (Johnson, Contact Mechanics, eq. 2.19a),
+so a tangential load Q at s moves a point x along the normal by (C/2) Q sgn(x - s): the
+surface ahead of a drag sinks, behind it rises. (Written first from memory with the
+opposite sign, this reference put the pressure forwards, the solver backwards by the
+same amount; the reciprocity settles it.) The lower body takes q = mu p along +x; the
+cylinder, seen in its own frame (x' = -x, z' = -z), also mu p along +x', so that its
+term changes sign in the common x, and the gap
 
     g(x) = x^2 / (2R) - delta + u_z1 + u_z2
          = x^2 / (2R) - delta - (K1 + K2) int p ln|x - s| ds
-           - ((C2 - C1) / 2) mu int p(s) sgn(x - s) ds
+           + ((C2 - C1) / 2) mu int p(s) sgn(x - s) ds
 
 is zero where p > 0 and positive elsewhere, with int p = P. The coupling term vanishes
-for bodies of one material (Dundurs' beta = 0: the pressure stays Hertz's); otherwise
-the surface ahead of the contact rises under the drag (Poisson's effect of the
-compression there) and the pressure shifts forwards.
+for bodies of one material (Dundurs' beta = 0: the pressure stays Hertz's); under a
+stiffer cylinder (C2 > C1) the surface sinks ahead of the contact and rises behind, and
+the pressure shifts backwards, against the sliding.
 
 Solved by collocation: piecewise-constant pressures on N cells over [-L, L] (integrals
 of both kernels over a cell in closed form), the contact set by an active-set iteration
@@ -69,7 +75,7 @@ def sliding_contact(force, radius, mu, upper, lower, cells=1200, reach=None):
     left, right = edges[:-1][None, :], edges[1:][None, :]
     X = x[:, None]
     # gap = h - delta + G p
-    G = -K * _log_integral(X, left, right) - 0.5 * (C2 - C1) * mu * _sign_integral(X, left, right)
+    G = -K * _log_integral(X, left, right) + 0.5 * (C2 - C1) * mu * _sign_integral(X, left, right)
     h = x ** 2 / (2 * radius)
     active = np.abs(x) < hertz_a
     for _ in range(10 * cells):

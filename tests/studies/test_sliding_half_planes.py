@@ -1,7 +1,7 @@
 """The half-plane reference of sliding contact (studies/sliding_half_planes.py): Hertz's
 pressure without friction, no effect of friction between bodies of one material
 (Dundurs' beta = 0), the load carried, and friction pushing the pressure towards the
-leading edge between unlike bodies."""
+trailing edge under a stiffer cylinder (the module's docstring: Betti's reciprocity)."""
 
 import math
 
@@ -41,10 +41,10 @@ def test_friction_between_bodies_of_one_material_changes_nothing():
     np.testing.assert_array_equal(p0, p1)
 
 
-def test_the_load_is_carried_and_friction_moves_the_pressure_forwards():
+def test_the_load_is_carried_and_friction_moves_the_pressure_backwards():
     x, p, _ = sliding_contact(P, R, 0.5, (math.inf, 0.3), (1.0, 0.3), cells=1600)
     assert np.sum(p) * (x[1] - x[0]) == pytest.approx(P, rel=1e-12)
     assert (p >= 0).all()
     centre, low, high = centre_and_edges(x, p)
     a, _ = _hertz((math.inf, 0.3), (1.0, 0.3))
-    assert centre > 0.05 * a and high > a and low > -a    # towards the sliding, +x
+    assert centre < -0.05 * a and low < -a and high < a    # against the sliding, -x
