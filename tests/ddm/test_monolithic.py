@@ -1,5 +1,6 @@
 """The Robin loop against a monolithic solve of the same discrete penalised problem, on
-every kind of scene, and equilibrium.
+every kind of scene, and equilibrium (bodies of revolution and friction: the same checks
+in test_monolithic_revolution.py and test_monolithic_friction.py).
 
 freefem/monolithic.edp builds every subdomain with the workers' own includes, couples
 them by the penalty on the same interface points and iterates the contact set to a
@@ -43,16 +44,6 @@ def _off_centre_full_model():
                  coatings=coatings, load=scene.load, symmetric=False)
 
 
-def _sliding(model, friction=0.3, **overrides):
-    """The cylinder scene as a full model, its patch [-2 b, 2 b] a 2D coating or a shell
-    5 times as stiff as the bodies, the indenter sliding towards +x1 under friction
-    (Dundurs' beta of the coated base against the indenter is not 0: the friction
-    traction shifts the pressure)."""
-    scene = _file("cylinder", **{"coating[1].model": model, **overrides})
-    return replace(scene, symmetric=False, friction=friction, sliding=True,
-                   coatings=(replace(scene.coatings[0], start=-2.0),))
-
-
 TIGHT = Settings(eps_u=1e-10)
 CASES = {
     "paper, shell, active-set loop": (paper_scene(), TIGHT),
@@ -87,23 +78,6 @@ CASES = {
     "coated roller, stretch shell": (_file("roller", model="stretch_shell"), TIGHT),
     "three patches, shell and 2D": (_file("discrete", **{"coating[2].model": "elastic"}), TIGHT),
     "full model, off-centre": (_off_centre_full_model(), TIGHT),
-    # bodies of revolution: the forms and interfaces weighted by 2 pi r, the hoop strain
-    "sphere on a coated disc, 2D coating": (_file("sphere"), TIGHT),
-    "rigid sphere on a coated ring, iterated inside the base's worker": (
-        _file("sphere", **{"indenter.rigid": True, "coating[1].start": 0.5}),
-        Settings(eps_u=1e-8, inner_solve="iterate", bonds="inside")),
-    "sphere under a descent, iterated, bond exchanged": (
-        _file("sphere", stamp=0.04), Settings(eps_u=1e-10, inner_solve="iterate",
-                                              bonds="exchanged")),
-    # shells of revolution (freefem/shell_revolution.idp, its form times 2 pi): a disc,
-    # u = beta = 0 on the axis, with and without thickness stretch; a ring, iterated in
-    # the base's worker (freefem/coated_base.edp builds it with the shell's includes)
-    "sphere on a coated disc, shell of revolution": (_file("sphere", model="shell"), TIGHT),
-    "sphere on a coated disc, stretch shell of revolution": (
-        _file("sphere", model="stretch_shell"), TIGHT),
-    "sphere on a coated ring, shell of revolution, iterated inside the base's worker": (
-        _file("sphere", model="shell", **{"coating[1].start": 0.5}),
-        Settings(eps_u=1e-8, inner_solve="iterate", bonds="inside")),
     # contrast: each side's gamma from its neighbour, the soft side's inactive points
     # released (ddm/robin_parameters.py: the coated base's matrix changed at the contact
     # set's changed points by a low-rank update, freefem/robin.idp), iterated (the bond
@@ -126,16 +100,6 @@ CASES = {
     # digits differ from run to run)
     "rigid cylinder on a coated block, force": (
         _file("cylinder", **{"indenter.rigid": True}), Settings(eps_u=1e-7)),
-    # friction, full sliding: the tangential traces carry mu p (robin.robin_laws), the
-    # monolithic matrix the non-symmetric friction block (freefem/monolithic.edp); at
-    # eps_u 1e-8, as a friction side's data holds mu p over its small Robin parameter
-    # (robin_parameters.FRICTION_SHARE), whose rounding holds the estimate near 2e-10
-    "sliding cylinder on a 2D coating, mu 0.3": (_sliding("elastic"), Settings(eps_u=1e-8)),
-    "sliding cylinder on a shell, mu 0.3": (_sliding("shell"), Settings(eps_u=1e-8)),
-    "sliding cylinder 3 E on a stretch shell, mu 0.5": (
-        _sliding("stretch_shell", 0.5, **{"indenter.E": 3.0}), Settings(eps_u=1e-8)),
-    "rigid cylinder sliding on a 2D coating, mu 0.3": (
-        _sliding("elastic", **{"indenter.rigid": True}), Settings(eps_u=1e-7)),
     "rigid cylinder on a coated block, descent, iterated": (
         _file("cylinder", **{"indenter.rigid": True, "load.force": None,
                              "load.displacement": 0.02}),

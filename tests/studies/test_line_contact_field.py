@@ -26,11 +26,14 @@ def test_a_finite_blocks_excess_falls_like_one_over_its_size():
 
 
 # Full sliding (issue's must-show): McEwen's largest von Mises stress lies below the
-# surface at mu = 0.1 (0.565 p0 at x = 0.285 a, z = 0.669 a) and on it from mu of
-# about 0.27 (mu = 0.3: 0.667 p0 at x = 0.287 a; mu = 0.5: 0.975 p0 at x = 0.447 a).
-@pytest.fixture(scope="module", params=[0.1, 0.3, 0.5])
+# surface at mu = 0.1 (0.565 p0 at x = 0.285 a, z = 0.669 a), its depth within 1 % at
+# mesh level 2 only; on the surface from mu of about 0.27 (mu = 0.3: 0.667 p0 at
+# x = 0.287 a; mu = 0.5: 0.975 p0 at x = 0.447 a), within 0.4 % from mesh level 1.
+@pytest.fixture(scope="module", params=[(0.1, 2), (0.3, 1), (0.5, 1)],
+                ids=["mu 0.1", "mu 0.3", "mu 0.5"])
 def sliding(request):
-    return run_sliding(128.0, 200.0, 2, request.param)
+    mu, level = request.param
+    return run_sliding(128.0, 200.0, level, mu)
 
 
 def test_sliding_the_largest_von_mises_stress_is_mcewens_within_1_percent(sliding):
@@ -51,7 +54,7 @@ def test_sliding_the_friction_force_is_mu_times_the_normal_force(sliding):
 def test_sliding_the_face_is_in_tension_behind_the_contact(sliding):
     """McEwen: 2 mu p0 at the trailing edge x1 = -a, a cusp (sigma_x falls like
     sqrt(-x/a - 1) outside): at mesh level 2 the base's nodal stresses gave 0.86-0.88 of
-    it at the first node behind the edge (0.81-0.83 at level 1: the square root of the
-    element size)."""
+    it at the edge or the first node behind it, 0.81-0.83 at level 1 (rising as the
+    square root of the element size)."""
     assert -1.05 < sliding["face_tension_x1"] <= -1.0 + 1e-9, sliding
     assert 0.8 < sliding["face_tension"] <= 1.0, sliding
