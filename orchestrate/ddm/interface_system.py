@@ -6,7 +6,9 @@ sides: the state of the interfaces (robin.py: every side's trace u and traction 
 x = S g + s0, the traces u = M g + m (M has a block per subdomain) and the tractions
 t = alpha (g - u); the next data are g = L x + h by the sides' Robin laws
 (robin.robin_laws, written as coefficients: own trace, the other side's trace and
-traction). Its fixed point, the penalised problem's solution for that Psi, solves
+traction, and on a friction side its contact's normal stress, the mean of the contact's
+two tractions at the same point). Its fixed point, the penalised problem's solution for
+that Psi, solves
 
     (I - L S) g = L s0 + h,
 
@@ -42,6 +44,14 @@ class InterfaceSystem:
         for (kind, i, side), where in layout.slices.items():
             if kind == "u":
                 self.other[_entries(where)] = _entries(layout.slices["u", i, 1 - side])
+        # a friction side's entries: its contact's side A entries at the same points
+        # (side B's are their ``other``); elsewhere the entry itself, with no weight
+        self.contact = np.arange(size)
+        for i, interface in enumerate(layout.interfaces):
+            if interface.kind == "friction":
+                for side in (0, 1):
+                    self.contact[_entries(layout.slices["u", i, side])] = _entries(
+                        layout.slices["u", interface.contact, 0])
 
     def laws_matrix(self, laws):
         """(L, h, alpha): the data g = L x + h of the state x under ``laws``, and the
@@ -53,31 +63,40 @@ class InterfaceSystem:
         L[rows, rows] = coefficients["own"]
         L[rows, self.other] += coefficients["other_u"]
         L[rows, n + self.other] = coefficients["other_t"]
+        half = 0.5 * coefficients["by_pressure"]
+        L[rows, n + self.contact] += half
+        L[rows, n + self.other[self.contact]] += half
         return L, h, coefficients["alpha"]
 
     def _coefficients(self, laws):
         """Every trace entry's coefficients of its law (alpha, own, other_u, other_t:
         robin.robin_laws), and the laws' constants h."""
         n = self.size
-        coefficients = {name: np.empty(n) for name in ("alpha", "own", "other_u", "other_t")}
+        coefficients = {name: np.zeros(n) for name in ("alpha", "own", "other_u", "other_t",
+                                                       "by_pressure")}
         h = np.empty(n)
         for (i, side), law in laws.items():
             where = self.layout.slices["u", i, side]
             components = law.constant.shape[0]
             for name, values in coefficients.items():
-                values[where] = np.tile(getattr(law, name), components)
+                value = getattr(law, name)
+                if value is not None:
+                    values[where] = np.tile(value, components)
             h[where] = np.ravel(law.constant)
         return coefficients, h
 
     def _times_laws(self, coefficients, x):
         """L x, for a state x (a vector or the columns of a matrix): every entry's law
-        takes its own trace and the other side's trace and traction, three terms (L is
-        that sparse; a dense product would cost most of a solve)."""
-        n, other = self.size, self.other
+        takes its own trace and the other side's trace and traction, and a friction
+        entry its contact's two tractions (L is that sparse; a dense product would cost
+        most of a solve)."""
+        n, other, contact = self.size, self.other, self.contact
         shape = (-1,) + (1,) * (x.ndim - 1)
         return (coefficients["own"].reshape(shape) * x[:n]
                 + coefficients["other_u"].reshape(shape) * x[other]
-                + coefficients["other_t"].reshape(shape) * x[n + other])
+                + coefficients["other_t"].reshape(shape) * x[n + other]
+                + (0.5 * coefficients["by_pressure"]).reshape(shape)
+                * (x[n + contact] + x[n + other[contact]]))
 
     def state_matrix(self, alpha):
         """(S, s0): the state x = S g + s0 the subdomains answer to the data g."""

@@ -313,10 +313,6 @@ def _inner_solve(settings, problem, coarse, contrast=False):
     if settings.method == PAPER:
         return InnerSolve(asked, NO_INNER_SOLVE, "the paper's loop updates its contact set "
                           "at every iteration: no fixed point to solve", None, NO_INNER_SOLVE)
-    if problem.frictions:
-        return InnerSolve(asked, ITERATE, f"{'asked' if asked == ITERATE else 'auto'}: "
-                          "iterate, the only inner solve of a frictional contact set (its "
-                          "direct and two-level solves are not built yet)", None, ITERATE)
     fallback, affordable = None, ""
     if asked == "auto" and settings.workers == "persistent":
         work, memory = _probe_work(problem), interface_system_memory(problem)

@@ -874,10 +874,9 @@ def check_compatible(scene, settings):
         _require(settings.method != "paper", "method",
                  "method = 'paper' is frictionless (the paper's loop); friction needs "
                  "method = 'active-set'")
-        _require(settings.inner_solve in ("auto", "iterate"), "inner_solve",
-                 f"inner_solve = {settings.inner_solve!r} with friction: a frictional "
-                 "contact set is solved by iteration (inner_solve = 'iterate' or 'auto'); "
-                 "its direct and two-level solves are not built yet")
+        _require(settings.inner_solve != "two-level", "inner_solve",
+                 "inner_solve = 'two-level' with friction: the coarse level is "
+                 "frictionless; 'auto', 'direct' or 'iterate'")
 
 
 def to_dict(obj):

@@ -139,9 +139,9 @@ def test_the_command_line_refuses_a_bad_scene_before_any_work(name, tmp_path):
 
 @pytest.mark.parametrize("settings, words", [
     ("method = \"paper\"", ["method = 'paper' is frictionless"]),
-    ("inner_solve = \"direct\"", ["inner_solve = 'direct' with friction", "'iterate' or 'auto'"]),
-    ("inner_solve = \"two-level\"", ["inner_solve = 'two-level' with friction"]),
-], ids=["the paper's loop", "direct", "two levels"])
+    ("inner_solve = \"two-level\"", ["inner_solve = 'two-level' with friction",
+                                     "the coarse level is frictionless"]),
+], ids=["the paper's loop", "two levels"])
 def test_friction_refuses_the_solves_it_has_not_before_any_work(settings, words, tmp_path):
     path = tmp_path / "scene.toml"
     path.write_text(SLIDING + f"[settings]\n{settings}\n")
