@@ -494,7 +494,7 @@ def _friction_interfaces(scene, contacts):
             contact.position, contact.normal, contact.tangent, contact.weight,
             np.zeros(n), (Side("indenter", indenter.place, (-contact.tangent,)),
                           Side(partner.subdomain, partner.place, (along,))),
-            friction=np.full(n, float(scene.friction)), contact=k))
+            friction=np.full(n, float(scene.friction_on(coating))), contact=k))
     return frictions
 
 

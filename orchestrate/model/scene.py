@@ -143,6 +143,12 @@ def _poisson(key, value):
              "positive elastic energy")
 
 
+def _friction(key, value):
+    low, high = FRICTION_RANGE
+    _require(_finite(value) and not isinstance(value, bool) and low <= value <= high, key,
+             f"{key} = {value!r} must be a number in [{low:g}, {high:g}] (Coulomb's mu)")
+
+
 def _choice(key, value, choices):
     _require(value in choices, key, f"{key} = {value!r} must be one of {choices}")
 
@@ -271,6 +277,7 @@ class Coating:
                                    # "elastic" (2D) or "auto" (chosen per scene:
                                    # orchestrate/run/plan.py)
     shear_factor: float = 5.0 / 6.0  # k' of the shell
+    friction: Optional[float] = None   # Coulomb's mu on its top (None: the scene's)
 
     def check(self, prefix):
         for name in ("start", "end"):
@@ -287,6 +294,8 @@ class Coating:
                  "shear stiffness leaves its matrix ill-conditioned")
         _poisson(prefix + "nu", self.nu)
         _choice(prefix + "model", self.model, MODEL_CHOICES)
+        if self.friction is not None:
+            _friction(prefix + "friction", self.friction)
 
 
 @dataclass(frozen=True)
@@ -323,7 +332,8 @@ class Scene:
     ``contact_zone``: the x1 range where the indenter may touch the coatings or the
     bare base (default: wherever its face is over the base); a run whose contact
     reaches an end of it that is not the end of a face fails.
-    ``friction``: Coulomb's coefficient mu on every contact; ``sliding``: the indenter
+    ``friction``: Coulomb's coefficient mu on every contact (a patch's own
+    ``friction``, where given, on its top); ``sliding``: the indenter
     slides steadily towards +x1 over the base (full sliding: the friction traction
     mu p wherever the bodies touch, the indenter dragging the surfaces it touches
     along). Friction needs sliding (partial slip is not solved yet) and sliding a full
@@ -485,11 +495,12 @@ class Scene:
         """Friction on a full plane model under full sliding: what the solver covers."""
         _require(isinstance(self.sliding, bool), "sliding",
                  f"sliding = {self.sliding!r} must be true or false")
-        low, high = FRICTION_RANGE
-        _require(_finite(self.friction) and not isinstance(self.friction, bool)
-                 and low <= self.friction <= high, "friction",
-                 f"friction = {self.friction!r} must be a number in [{low:g}, {high:g}] "
-                 "(Coulomb's mu)")
+        _friction("friction", self.friction)
+        for number, coating in enumerate(self.coatings, start=1):
+            key = f"coating[{number}].friction"
+            _require(not coating.friction or self.sliding, "sliding",
+                     f"{key} = {coating.friction!r} needs sliding = true: the solver "
+                     "covers full sliding; partial slip is not solved yet")
         _require(self.friction == 0 or self.sliding, "sliding",
                  f"friction = {self.friction!r} needs sliding = true: the solver covers "
                  "full sliding (the friction traction mu p wherever the bodies touch); "
@@ -501,7 +512,14 @@ class Scene:
     @property
     def frictional(self):
         """Whether any contact carries a friction traction."""
-        return self.sliding and self.friction > 0
+        return self.sliding and any(mu > 0 for mu in [self.friction] + [
+            c.friction for c in self.coatings if c.friction is not None])
+
+    def friction_on(self, coating):
+        """Coulomb's mu on a patch's top (None: the bare base's)."""
+        if coating is not None and coating.friction is not None:
+            return coating.friction
+        return self.friction
 
     def _check_revolution(self):
         """What a scene of bodies of revolution (axisymmetric) cannot have."""

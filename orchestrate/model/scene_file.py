@@ -9,7 +9,7 @@ A scene file has the tables of orchestrate/model/scene.py (docs/reference.md, "S
     sliding = true                 # optional: the indenter slides towards +x1
     [indenter]   radius, profile, face_mesh, width, height, centre, E, nu, rigid
     [base]       shape, width, height, radius, bore, E, nu
-    [[coating]]  start, end, thickness, E, nu, model, shear_factor   (any number)
+    [[coating]]  start, end, thickness, E, nu, model, shear_factor, friction   (any number)
     [load]       displacement or force
     [units]      length, stress, b (optional: lengths in mm and moduli in MPa, say;
                  orchestrate/model/units.py)

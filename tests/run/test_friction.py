@@ -92,3 +92,23 @@ def test_auto_models_a_patch_under_friction_by_the_2d_coating():
     shell = prepare(_sliding(0.3, "shell"), SETTINGS)
     assert [w["code"] for w in shell.warnings] == ["model_uncalibrated"]
     assert "friction" in shell.warnings[0]["message"]
+
+
+def test_a_patch_may_have_its_own_friction():
+    """Two patches side by side under the contact, mu 0.2 and 0.5 on their tops, the
+    scene's 0.3 on the bare base: each contact's friction traction is its own mu p."""
+    scene = _sliding(0.3)
+    left = replace(scene.coatings[0], start=-2.0, end=0.0, friction=0.2)
+    right = replace(scene.coatings[0], start=0.0, end=2.0, friction=0.5)
+    result = solve(replace(scene, coatings=(left, right)), SETTINGS)
+    contact = result.contact
+    for name, mu in (("contact-coating1", 0.2), ("contact-coating2", 0.5)):
+        rows = contact[contact.interface == name]
+        assert (rows.sigma_n < 0).sum() > 5, name
+        np.testing.assert_allclose(rows.sigma_t, -mu * rows.sigma_n, rtol=0,
+                                   atol=1e-9 * contact.sigma_n.abs().max())
+    from orchestrate.run.plan import prepare
+    problem = prepare(replace(scene, coatings=(left, right)), SETTINGS).problem
+    assert {f.name: f.friction[0] for f in problem.frictions} == {
+        "friction-base1": 0.3, "friction-coating1": 0.2, "friction-coating2": 0.5,
+        "friction-base2": 0.3}
