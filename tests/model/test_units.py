@@ -184,7 +184,7 @@ def test_every_output_says_its_units(twins):
 def test_every_number_of_a_scene_has_a_kind():
     """A new scene field cannot escape the conversion: every number of the scene's
     tables is a length, a stress, a force or one of the dimensionless ones named here."""
-    dimensionless = {"nu", "shear_factor"}
+    dimensionless = {"nu", "shear_factor", "friction"}     # friction: Coulomb's mu
     for table, cls in (("indenter", Indenter), ("base", Base), ("coating", Coating),
                        ("load", Load)):
         for field in dataclasses.fields(cls):
