@@ -13,7 +13,8 @@
 #   make line-contact  the field below a line contact, frictionless and sliding, against
 #                   McEwen's closed form (results/line_contact_field.md)
 #   make friction   iterations with friction against without (results/friction_iterations.md),
-#                   the pressure's shift between unlike bodies (results/sliding_shift.md)
+#                   the pressure's shift between unlike bodies (results/sliding_shift.md),
+#                   partial slip against Cattaneo (results/partial_slip.md)
 #   make sliding    a cylinder sliding over three patches: the bonds' peel and shear against
 #                   its position, mu = 0, 0.2, 0.5 (results/sliding/)
 #   make indentation  a ball on coated steel: indentation curves and stresses
@@ -149,6 +150,7 @@ line-contact: setup
 friction: setup
 	$(PYTHON) -m studies.friction_iterations
 	$(PYTHON) -m studies.sliding_shift
+	$(PYTHON) -m studies.partial_slip
 
 sliding: setup
 	$(PYTHON) -m studies.sliding_patches

@@ -408,6 +408,13 @@ def _solve(args):
          f"contact force {summary['total_force']:.4e} {units['force']}{descent}, contact "
          "zones " + ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in summary["contact_zones"])
          + f" {units['length']}; results in {args.out}")
+    if summary.get("stick_zones") is not None:
+        _say("partial slip: stick zones " + ", ".join(
+            f"[{a:.4g}, {b:.4g}]" for a, b in summary["stick_zones"]) + f" {units['length']}, "
+            f"tangential force {summary['tangential_force']:.4e} {units['force']}, the "
+            f"stamp's shift {summary['stamp_shift']:.4e} {units['length']}")
+    elif scene.sliding and summary.get("tangential_force"):
+        _say(f"sliding: friction force {summary['tangential_force']:.4e} {units['force']}")
     element, far = summary["interface_element_size"], summary["interface_element_size_far"]
     across = ", ".join(f"{n:.3g}" for n in summary["elements_across_contact"])
     _say(f"mesh: interface elements of {element:.4g} {units['length']}"

@@ -98,3 +98,33 @@ def updated_active_set(psi, penetration, traction):
     this is Psi = [d - u1n - w < 0]; before it, the traction is the better judge on the
     active points, where the penetration is a difference of nearly equal traces."""
     return np.where(psi > 0, traction < 0, penetration < 0).astype(float)
+
+
+def stick_zones(x, stick, margin):
+    """[(start, end)] of every stretch of consecutive sticking points (ordered along the
+    face), ``margin`` the friction's reserve mu p - |q| at every point. In Cattaneo's
+    stick zone the reserve goes like sqrt(c - x) near its end c, so its square is
+    linear there: an end is where the line through the last two sticking points'
+    squared reserves reaches zero, kept between the last sticking point and the next."""
+    zones, i, n = [], 0, len(x)
+    squared = np.square(np.maximum(margin, 0.0))
+
+    def end(last, step):
+        after, before = last + step, last - step
+        if not 0 <= after < n:
+            return float(x[last])
+        if not 0 <= before < n or not stick[before] or squared[before] <= squared[last]:
+            return float(0.5 * (x[last] + x[after]))
+        edge = x[last] + squared[last] * (x[last] - x[before]) / (squared[before] - squared[last])
+        low, high = sorted((x[last], x[after]))
+        return float(min(max(edge, low), high))
+    while i < n:
+        if not stick[i]:
+            i += 1
+            continue
+        j = i
+        while j + 1 < n and stick[j + 1]:
+            j += 1
+        zones.append((end(i, -1), end(j, +1)))
+        i = j + 1
+    return zones

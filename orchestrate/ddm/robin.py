@@ -105,15 +105,21 @@ def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=()):
     every gamma theta must stay below 1 (Settings refuses gamma theta >= 1.5 for the
     largest, and gamma_B / gamma_A > 0 keeps the second term away).
 
-    Friction (full sliding): on a friction interface both sides feel, along their
-    tangents, the traction q = -mu sigma_n where their contact's Psi = 1 (sigma_n its
-    normal stress, compression negative: q = mu p), else 0. A traction is a Neumann
-    condition, which a Robin side takes as its own trace plus the traction over gamma:
-        friction, either side:  alpha = gamma Psi (or gamma, held),
-                                g = u + Psi q / gamma,  sigma_n = (t_A + t_B) / 2
-    of the contact, so that t = alpha (g - u) = q at the fixed point, where the
-    contact's two tractions equal its law's: the discrete problem the monolithic solve
-    assembles, q with the penalty's sigma_n (freefem/monolithic.edp).
+    Friction: on a friction interface both sides feel, along their tangents, the
+    traction q = -phi mu sigma_n where their contact's Psi = 1 and the point slips
+    (phi = +-1; full sliding: phi = 1 throughout; sigma_n the contact's normal stress,
+    compression negative: q = phi mu p), else 0. A traction is a Neumann condition,
+    which a Robin side takes as its own trace plus the traction over its gamma_f:
+        friction, slipping:  alpha = gamma_f (held), g = u + Psi q / gamma_f,
+                             sigma_n = (t_A + t_B) / 2 of the contact,
+    so that t = alpha (g - u) = q at the fixed point, where the contact's two tractions
+    equal its law's: the discrete problem the monolithic solve assembles, q with the
+    penalty's sigma_n (freefem/monolithic.edp). A point that sticks (phi = 0, partial
+    slip) has the penalty law t = -(u_A + u_B)/theta, a contact's with no gap, and its
+    Robin-Robin exchange at the contact side's gamma (``sides`` of the contact):
+        friction, sticking:  alpha = gamma,  g = -u' + c t' / gamma.
+    The friction states follow the contact set Psi, after its points (StateLayout's
+    friction_slices).
 
     A side that holds its inactive points: alpha = gamma on all of the contact, and
     where Psi = 0 the data is the side's own trace, g = u^k. The fixed point is the same
@@ -131,10 +137,17 @@ def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=()):
                 law = RobinLaw(zeros, zeros, zeros, zeros, np.zeros((2, n)))
             elif interface.kind == "friction":
                 active = psi_of[interface.contact] > 0
+                phi = layout.friction_state(psi, i)
+                stick, slip = active & (phi == 0), active & (phi != 0)
                 held = parameter.hold_inactive or direct
-                law = RobinLaw(np.full(n, gamma) if held else gamma * psi_of[interface.contact],
-                               ones, zeros, zeros, np.zeros((1, n)), interface.contact,
-                               np.where(active, -interface.friction / gamma, 0.0))
+                # the stick law's exchange: the contact side's gamma
+                gamma_s = sides[2 * interface.contact + side].gamma
+                c_s = 1.0 - gamma_s * theta
+                alpha = np.full(n, gamma) if held else gamma * psi_of[interface.contact]
+                law = RobinLaw(np.where(stick, gamma_s, alpha), np.where(stick, 0.0, 1.0),
+                               np.where(stick, -1.0, 0.0), np.where(stick, c_s / gamma_s, 0.0),
+                               np.zeros((1, n)), interface.contact,
+                               np.where(slip, -phi * interface.friction / gamma, 0.0))
             elif interface.kind == "contact":
                 active = psi_of[i] > 0
                 if parameter.hold_inactive or direct:
@@ -202,10 +215,40 @@ def state_penetration(layout, x):
     return penetration(layout.gap, layout.contact(x, "u", 0), layout.contact(x, "u", 1))
 
 
-def updated_contact_set(layout, psi, x):
+def updated_contact_set(layout, psi, x, partial_slip=False):
     """The semi-smooth Newton update of Psi from the state x solved with it
-    (contact.updated_active_set)."""
-    return updated_active_set(psi, state_penetration(layout, x), contact_traction(layout, x))
+    (contact.updated_active_set), and under partial slip of the friction states after
+    it (updated_friction_states); under full sliding they stay 1."""
+    n = layout.contact_points
+    contact = updated_active_set(psi[:n], state_penetration(layout, x),
+                                 contact_traction(layout, x))
+    if len(psi) == n:
+        return contact
+    if not partial_slip:
+        return np.concatenate([contact, psi[n:]])
+    states = []
+    slices = dict(layout.contact_slices())
+    for i, where in layout.friction_slices():
+        face = layout.interfaces[i]
+        c = face.contact
+        pressure = -0.5 * (layout.get(x, "t", c, 0) + layout.get(x, "t", c, 1))
+        states.append(updated_friction_states(
+            psi[slices[c]] > 0, contact[slices[c]] > 0, psi[where],
+            0.5 * (layout.get(x, "t", i, 0) + layout.get(x, "t", i, 1)),
+            layout.get(x, "u", i, 0) + layout.get(x, "u", i, 1), face.friction * pressure))
+    return np.concatenate([contact] + states)
+
+
+def updated_friction_states(active, active_next, phi, traction, slip, limit):
+    """The semi-smooth update of the friction states phi from a state solved with them
+    (freefem/monolithic.edp updates its own alike): at a point in contact, one that
+    sticks slips where its traction exceeds the limit mu p (phi the traction's sign),
+    one that slips sticks where its slip turns with phi (the traction must oppose it);
+    a point out of contact in the next set sticks (so it enters)."""
+    stuck = np.where(np.abs(traction) > limit, np.sign(traction), 0.0)
+    kept = np.where(phi * slip > 0, 0.0, phi)
+    new = np.where(active, np.where(phi == 0, stuck, kept), phi)
+    return np.where(active_next, new, 0.0)
 
 
 @dataclass
@@ -358,7 +401,7 @@ class _Loop:
             "traction_change": change[1],
             "traction_component_change": change[2],
             "error_estimate": self.estimate,
-            "active_points": int(psi.sum()),
+            "active_points": int(psi[:layout.contact_points].sum()),
             "active_set_changed": previous_psi is not None and bool(np.any(psi != previous_psi)),
             "active_set_update": update,
             "contact_force": -0.5 * float(np.dot(layout.contact_weight,
@@ -578,6 +621,11 @@ class _ActiveSetLoop(_Loop):
                                                             self.strategy.first_contact))
         predicted = (self.strategy.first_contact is not None
                      and not np.any(state_penetration(layout, x) < 0))
+        # the friction states after the contact points: all stick under partial slip,
+        # all slip (full sliding) otherwise
+        partial_slip = self.problem.scene.partial_slip
+        friction_points = sum(layout.interfaces[i].size for i in layout.friction_indices)
+        psi = np.concatenate([psi, np.full(friction_points, 0.0 if partial_slip else 1.0)])
         previous_psi, update, seen = None, 0, {psi.tobytes()}
         tolerance = max(eps, knobs.predicted_set_tolerance if predicted
                         else knobs.active_set_tolerance)
@@ -590,7 +638,7 @@ class _ActiveSetLoop(_Loop):
             image = self.iterate(x, psi)
             change = self.relative_change(image, x)
             failure = self.monitor.check(iteration, image, max(change[:2]))
-            new_psi = updated_contact_set(layout, psi, image)
+            new_psi = updated_contact_set(layout, psi, image, partial_slip)
             psi_settled = np.array_equal(new_psi, psi)
             if system is not None:
                 # image is x up to rounding; the refinement step sizes the rounding

@@ -32,6 +32,8 @@ class StateLayout:
                     start += size
         self.size = start
         self.contact_indices = [i for i, f in enumerate(self.interfaces) if f.kind == "contact"]
+        self.friction_indices = [i for i, f in enumerate(self.interfaces) if f.kind == "friction"]
+        self.contact_points = sum(self.interfaces[i].size for i in self.contact_indices)
 
     def zeros(self):
         return np.zeros(self.size)
@@ -76,6 +78,24 @@ class StateLayout:
         if not self.contact_indices:
             return np.zeros(0)
         return np.concatenate([getattr(self.interfaces[i], name) for i in self.contact_indices])
+
+    def friction_slices(self):
+        """Where each friction interface's points sit in a contact state after its
+        contact points (robin.py: Psi, then the friction states phi)."""
+        slices, start = [], self.contact_points
+        for i in self.friction_indices:
+            slices.append((i, slice(start, start + self.interfaces[i].size)))
+            start += self.interfaces[i].size
+        return slices
+
+    def friction_state(self, psi, i):
+        """Friction interface i's states phi in the contact state psi (0: sticks, +-1:
+        slips, its traction +-mu p); a state of the contact points alone: +1, full
+        sliding."""
+        where = dict(self.friction_slices())[i]
+        if len(psi) <= self.contact_points:
+            return np.ones(where.stop - where.start)
+        return psi[where]
 
     def contact_slices(self):
         """Where each contact interface's points sit in the concatenated contact arrays."""

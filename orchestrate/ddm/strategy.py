@@ -313,6 +313,10 @@ def _inner_solve(settings, problem, coarse, contrast=False):
     if settings.method == PAPER:
         return InnerSolve(asked, NO_INNER_SOLVE, "the paper's loop updates its contact set "
                           "at every iteration: no fixed point to solve", None, NO_INNER_SOLVE)
+    if problem.scene.partial_slip:
+        return InnerSolve(asked, ITERATE, f"{'asked' if asked == ITERATE else 'auto'}: "
+                          "iterate, as the workers' maps do not carry the stamp's shift "
+                          "(partial slip)", None, ITERATE)
     fallback, affordable = None, ""
     if asked == "auto" and settings.workers == "persistent":
         work, memory = _probe_work(problem), interface_system_memory(problem)

@@ -13,7 +13,8 @@ A scene is an indenter pressed on a base that carries any number of coating patc
     Load      the stamp's descent, or the total force per unit width
     Friction  Coulomb's coefficient mu on every contact, with the indenter sliding
               steadily towards +x1 (full sliding: the friction traction is mu p,
-              against the indenter's motion, wherever the bodies touch)
+              against the indenter's motion, wherever the bodies touch) or pulled by a
+              tangential force below mu P (partial slip: stick and slip zones)
 
 Lengths are in units of b and moduli in units of E (METHOD.md); the scene files of
 orchestrate/scenes/ write them out (orchestrate/model/scene_file.py reads them). Every object
@@ -301,10 +302,13 @@ class Coating:
 @dataclass(frozen=True)
 class Load:
     """The stamp's descent from first touch, or the total force per unit width on the
-    whole body (both halves of a half model); exactly one of them."""
+    whole body (both halves of a half model); exactly one of them. Under partial slip
+    also the tangential force per unit width on the indenter, towards +x1, below the
+    friction's limit mu P: the stamp shifts along x1 to carry it."""
 
     displacement: Optional[float] = None
     force: Optional[float] = None
+    tangential_force: Optional[float] = None
 
     def check(self, prefix):
         given = [name for name in ("displacement", "force") if getattr(self, name) is not None]
@@ -314,6 +318,11 @@ class Load:
         _require(_finite(getattr(self, given[0])) and getattr(self, given[0]) >= 0,
                  prefix + given[0],
                  f"{prefix}{given[0]} = {getattr(self, given[0])!r} must be a non-negative number")
+        if self.tangential_force is not None:
+            _require(_finite(self.tangential_force) and self.tangential_force >= 0,
+                     prefix + "tangential_force",
+                     f"{prefix}tangential_force = {self.tangential_force!r} must be a "
+                     "non-negative number")
 
     @property
     def kind(self):
@@ -336,8 +345,8 @@ class Scene:
     ``friction``, where given, on its top); ``sliding``: the indenter
     slides steadily towards +x1 over the base (full sliding: the friction traction
     mu p wherever the bodies touch, the indenter dragging the surfaces it touches
-    along). Friction needs sliding (partial slip is not solved yet) and sliding a full
-    plane model (symmetric = false): the friction traction breaks the mirror symmetry."""
+    along), or load.tangential_force (partial slip). Friction needs one of them, and
+    both a full plane model (symmetric = false): friction breaks the mirror symmetry."""
 
     indenter: Indenter
     base: Base
@@ -492,27 +501,55 @@ class Scene:
                  "problem's conditioning grows with the moduli's ratio")
 
     def _check_friction(self):
-        """Friction on a full plane model under full sliding: what the solver covers."""
+        """Friction on a full plane model, under full sliding or partial slip: what the
+        solver covers."""
         _require(isinstance(self.sliding, bool), "sliding",
                  f"sliding = {self.sliding!r} must be true or false")
         _friction("friction", self.friction)
+        moving = self.sliding or self.partial_slip
         for number, coating in enumerate(self.coatings, start=1):
             key = f"coating[{number}].friction"
-            _require(not coating.friction or self.sliding, "sliding",
-                     f"{key} = {coating.friction!r} needs sliding = true: the solver "
-                     "covers full sliding; partial slip is not solved yet")
-        _require(self.friction == 0 or self.sliding, "sliding",
-                 f"friction = {self.friction!r} needs sliding = true: the solver covers "
-                 "full sliding (the friction traction mu p wherever the bodies touch); "
-                 "partial slip under a tangential force below mu P is not solved yet")
+            _require(not coating.friction or moving, "sliding",
+                     f"{key} = {coating.friction!r} needs sliding = true (full sliding) or "
+                     "load.tangential_force (partial slip)")
+        _require(self.friction == 0 or moving, "sliding",
+                 f"friction = {self.friction!r} needs sliding = true (full sliding: the "
+                 "friction traction mu p wherever the bodies touch) or load.tangential_force "
+                 "(partial slip under a tangential force below mu P)")
         _require(not self.sliding or not self.symmetric, "symmetric",
                  "sliding = true needs symmetric = false: the friction traction breaks the "
                  "mirror symmetry of a half model (model the whole scene)")
+        if not self.partial_slip:
+            return
+        q = self.load.tangential_force
+        _require(not self.sliding, "load.tangential_force",
+                 f"load.tangential_force = {q!r} with sliding = true: a sliding indenter "
+                 "carries mu P; leave one of them out")
+        _require(not self.symmetric, "symmetric",
+                 "load.tangential_force needs symmetric = false: the tangential force "
+                 "breaks the mirror symmetry of a half model (model the whole scene)")
+        _require(self.load.force is not None, "load.tangential_force",
+                 f"load.tangential_force = {q!r} needs load.force: the stamp carries both "
+                 "forces (a descent with a tangential force is not solved)")
+        _require(not self.indenter.rigid, "indenter.rigid",
+                 "load.tangential_force with indenter.rigid = true: a rigid indenter's "
+                 "shift is not modelled yet; give the indenter a modulus")
+        least = min([self.friction] + [c.friction for c in self.coatings
+                                       if c.friction is not None])
+        _require(q < least * self.load.force, "load.tangential_force",
+                 f"load.tangential_force = {q!r} must be below mu P = {least:g} x "
+                 f"{self.load.force!r} (the smallest friction on any contact): at it the "
+                 "indenter slides (sliding = true)")
+
+    @property
+    def partial_slip(self):
+        """Whether the stamp carries a tangential force below the friction's limit."""
+        return self.load.tangential_force is not None
 
     @property
     def frictional(self):
         """Whether any contact carries a friction traction."""
-        return self.sliding and any(mu > 0 for mu in [self.friction] + [
+        return (self.sliding or self.partial_slip) and any(mu > 0 for mu in [self.friction] + [
             c.friction for c in self.coatings if c.friction is not None])
 
     def friction_on(self, coating):
@@ -895,6 +932,10 @@ def check_compatible(scene, settings):
         _require(settings.inner_solve != "two-level", "inner_solve",
                  "inner_solve = 'two-level' with friction: the coarse level is "
                  "frictionless; 'auto', 'direct' or 'iterate'")
+    if scene.partial_slip:
+        _require(settings.inner_solve in ("auto", "iterate"), "inner_solve",
+                 f"inner_solve = {settings.inner_solve!r} with load.tangential_force: the "
+                 "workers' maps do not carry the stamp's shift; 'auto' or 'iterate'")
 
 
 def to_dict(obj):

@@ -45,7 +45,7 @@ SCENE_KINDS = {
                  "E": STRESS},
     "base": {"width": LENGTH, "height": LENGTH, "radius": LENGTH, "bore": LENGTH, "E": STRESS},
     "coating": {"start": LENGTH, "end": LENGTH, "thickness": LENGTH, "E": STRESS},
-    "load": {"displacement": LENGTH, "force": FORCE},
+    "load": {"displacement": LENGTH, "force": FORCE, "tangential_force": FORCE},
 }
 
 # Every number a run writes, by its name (a CSV column, a VTU field, a summary key).
@@ -55,7 +55,7 @@ KINDS = {
     "u": LENGTH, "v": LENGTH, "w": LENGTH, "a_t": LENGTH, "a_n": LENGTH, "b_t": LENGTH,
     "b_n": LENGTH,
     "displacement": LENGTH, "descent": LENGTH, "contact_half_width": LENGTH, "depth": LENGTH,
-    "contact_half_width_estimate": LENGTH, "contact_zones": LENGTH,
+    "contact_half_width_estimate": LENGTH, "contact_zones": LENGTH, "stick_zones": LENGTH,
     "interface_element_size": LENGTH, "interface_element_size_far": LENGTH,
     # stresses
     "sigma_n": STRESS, "sigma_t": STRESS, "sigma_eq": STRESS, "s11": STRESS, "s22": STRESS,
@@ -67,7 +67,7 @@ KINDS = {
     "peak_normal_stress": STRESS,
     # forces per unit width (the shell's forces too), moments per unit width
     "T11": FORCE, "T13": FORCE, "T33": FORCE, "force": FORCE, "contact_force": FORCE,
-    "tangential_force": FORCE,
+    "tangential_force": FORCE, "stamp_shift": LENGTH,
     "interface_force": FORCE, "stamp_reaction": FORCE, "base_reaction": FORCE,
     "total_force": FORCE, "M11": MOMENT,
     # a shell of revolution's forces and moments per unit length of a circle

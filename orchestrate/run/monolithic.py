@@ -24,8 +24,11 @@ def solve_monolithic(problem, workdir):
     problem_file = os.path.join(workdir, "problem.txt")
     output = os.path.join(workdir, "monolithic_traces.txt")
     write_problem(problem, files, problem_file)
+    tangential = problem.scene.load.tangential_force
     freefem.run_script("monolithic.edp", ["-problem", problem_file, "-output", output,
-                                          *geometry_arguments(problem.scene)],
+                                          *geometry_arguments(problem.scene),
+                                          *([] if tangential is None
+                                            else ["-tangential", repr(tangential)])],
                        os.path.join(workdir, "monolithic.log"))
     tokens = open(output).read().split()
     traces, k = {}, 0
@@ -40,7 +43,13 @@ def solve_monolithic(problem, workdir):
     solves, settled, descent = int(tokens[k]), int(tokens[k + 1]), float(tokens[k + 2])
     if not settled:
         raise RuntimeError(f"the monolithic contact set did not settle in {solves} solves")
-    traces["solves"], traces["descent"] = solves, descent
+    traces["solves"], traces["descent"], traces["shift"] = solves, descent, float(tokens[k + 3])
+    k += 4
+    for i, interface in enumerate(problem.interfaces):   # the friction states phi
+        if interface.kind == "friction":
+            n = int(tokens[k])
+            traces["phi", i] = np.array(tokens[k + 1:k + 1 + n], dtype=float)
+            k += 1 + n
     return traces
 
 
@@ -54,9 +63,13 @@ def interface_stresses(problem, traces):
         if interface.kind == "contact":
             stresses[i] = contact_stress(interface.gap, a, b, theta)
         elif interface.kind == "friction":
+            # slipping (phi = +-1): phi mu p; sticking: the penalty's -(u_A + u_B)/theta
             contact = problem.interfaces[interface.contact]
-            stresses[i] = -interface.friction * contact_stress(
-                contact.gap, traces[interface.contact, 0], traces[interface.contact, 1], theta)
+            sigma_n = contact_stress(contact.gap, traces[interface.contact, 0],
+                                     traces[interface.contact, 1], theta)
+            phi = traces["phi", i]
+            stresses[i] = np.where(sigma_n < 0, np.where(
+                phi != 0, -phi * interface.friction * sigma_n, -(a + b) / theta), 0.0)
         else:
             stresses[i] = bond_traction(a, b, theta)
         stresses[i] = limits_on_axis(interface, stresses[i])

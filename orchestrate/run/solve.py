@@ -36,7 +36,8 @@ import time
 
 import numpy as np
 
-from orchestrate.ddm.contact import contact_half_width, contact_zones, limits_on_axis
+from orchestrate.ddm.contact import (contact_half_width, contact_zones, limits_on_axis,
+                                     stick_zones)
 from orchestrate.ddm.robin import run_robin_loop
 from orchestrate.ddm.state import StateLayout
 from orchestrate.errors import RunFailed, WarnedBeforeWork  # noqa: F401  (callers import them here)
@@ -207,6 +208,7 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
                                    f"{reached:g}: contact beyond it was assumed away; widen it")
             # the workers hold the fields of the last solve
             outputs = subdomains.outputs() if loop.converged else None
+            stamp_shift = subdomains.shift
             dofs = subdomains.dofs
             kept = subdomains.kept
         summary = {
@@ -218,6 +220,7 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
             "status": loop.status,
             "reason": loop.reason,
             "converged": loop.converged,
+            "stamp_shift": stamp_shift if scene.partial_slip else None,
             "iterations": loop.iterations,
             "final_relative_change": loop.history[-1]["relative_change"],
             "error_estimate": loop.error_estimate,
@@ -405,6 +408,7 @@ def _write_results(problem, loop, outputs, run_files):
         "elements_across_contact": [across for across, _ in
                                     elements_across(x_contact, scene.symmetric, zones)],
         "descent": loop.descent,
+        "stick_zones": _stick_zones(problem, layout, loop.psi, stresses),
         "total_force": (2.0 if scene.symmetric and not scene.axisymmetric else 1.0) * contact_force,
         "interfaces": per_interface,
         # the faces' normals over the contact: the pairing assumes them opposite
@@ -412,6 +416,24 @@ def _write_results(problem, loop, outputs, run_files):
             (float(np.max(problem.interfaces[i].mismatch[stresses[i] < 0]))
              for i in layout.contact_indices if np.any(stresses[i] < 0)), default=0.0)),
     }, x_contact, sigma_contact)
+
+
+def _stick_zones(problem, layout, psi, stresses):
+    """Under partial slip, the x1 intervals where the bodies stick (contact.stick_zones);
+    else None."""
+    if not problem.scene.partial_slip:
+        return None
+    contacts = dict(layout.contact_slices())
+    x, stick, margin = [], [], []
+    for i, where in layout.friction_slices():
+        face = problem.interfaces[i]
+        pressure = -stresses[face.contact]
+        x.append(face.position[:, 0])
+        stick.append((psi[contacts[face.contact]] > 0) & (psi[where] == 0))
+        margin.append(face.friction * pressure - np.abs(stresses[i]))
+    x, stick, margin = (np.concatenate(v) for v in (x, stick, margin))
+    order = np.argsort(x, kind="stable")
+    return [list(zone) for zone in stick_zones(x[order], stick[order], margin[order])]
 
 
 def _answers(problem, contact_rows, bond_rows, fields):

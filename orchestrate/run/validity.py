@@ -68,6 +68,13 @@ def _warning(code, message, value=None, limit=None):
             "limit": None if limit is None else float(limit)}
 
 
+def _unlike_bodies(scene):
+    """Whether some contact pairs bodies of different elastic constants (Dundurs' beta
+    may then differ from 0)."""
+    base = (scene.base.E, scene.base.nu)
+    return bool(scene.coatings) or (scene.indenter.E, scene.indenter.nu) != base
+
+
 def base_depth(base):
     """How deep the base is below its face: a block's height, a roller's rim."""
     return base.height if base.shape == "block" else base.radius - base.shaft_radius
@@ -134,6 +141,13 @@ def scene_warnings(scene, given, settings, say, a):
     units (the estimate's quantities are ratios: any consistent units do), and its a
     priori contact half-width ``a`` in those units."""
     warnings = []
+    if scene.partial_slip and _unlike_bodies(scene):
+        warnings.append(_warning(
+            "partial_slip_path", "load.tangential_force between unlike bodies (a coating, "
+            "or an indenter of another material): the force and the tangential force are "
+            "applied at once, while pressing alone already slips between unlike bodies "
+            "(Dundurs' beta is not 0), so the answer is that of proportional loading, not "
+            "of pressing, then pulling; load steps are not solved yet"))
     depth = base_depth(scene.base)
     for number, (coating, asked) in enumerate(zip(scene.coatings, given.coatings), start=1):
         share = coating.thickness / depth

@@ -199,22 +199,25 @@ class RobinRequest:
 class TraceReply:
     """The reply to Command.SOLVE: for every side, in the request's order, its trace, one
     array per component; then the CPU seconds of the request, those of its
-    back-substitution alone, and the stamp's descent (0 but for the stamp's body)."""
+    back-substitution alone, the stamp's descent and its shift along x1 (0 but for the
+    stamp's body, the shift 0 but under partial slip)."""
     traces: tuple             # per side: (components, points)
     seconds: float
     back_seconds: float
     descent: float
+    shift: float = 0.0
 
     def encode(self):
         return encode(*(row for trace in self.traces for row in trace),
-                      self.seconds, self.back_seconds, self.descent)
+                      self.seconds, self.back_seconds, self.descent, self.shift)
 
     @classmethod
     def decode(cls, numbers, shape):
         """``shape``: every side's (components, points), in order."""
         traces = tuple(np.array([numbers.array(points) for _ in range(components)])
                        for components, points in shape)
-        return cls(traces, numbers.number(), numbers.number(), numbers.number())
+        return cls(traces, numbers.number(), numbers.number(), numbers.number(),
+                   numbers.number())
 
     def by_side(self, sides):
         """{side: trace} for ``sides``, the request's sides in order: a trace of one

@@ -121,10 +121,13 @@ def shell_columns(subdomain):
 
 
 def load_arguments(problem):
-    """The stamp's load for the indenter's worker: its descent, or its force."""
+    """The stamp's load for the indenter's worker: its descent, or its force, and under
+    partial slip its tangential force."""
     scene = problem.scene
     if scene.load.force is not None:
-        return ["-force", scene.half_force]
+        tangential = ([] if scene.load.tangential_force is None
+                      else ["-tangential", scene.load.tangential_force])
+        return ["-force", scene.half_force, *tangential]
     return ["-descent", scene.load.displacement]
 
 
@@ -194,6 +197,7 @@ class Subdomains:
                          for worker, sides in self.sides.items()}
         self.entries = {}
         self.last_requests, self.mapped = {}, {}
+        self.shift = 0.0          # the stamp's shift along x1 in its last solve (partial slip)
         self._pending = {}           # map requests sent and not yet answered, by name
         self.dofs = self._start()
         # auto may solve directly unless the run's strategy planned to iterate
@@ -280,7 +284,7 @@ class Subdomains:
             traces.update(reply.by_side(self.sides[name]))
             seconds[name], seconds[f"back_{name}"] = reply.seconds, reply.back_seconds
             if self._stamp(name):
-                descent = reply.descent
+                descent, self.shift = reply.descent, reply.shift
         seconds["wait"] = time.perf_counter() - start
         return traces, seconds, descent
 

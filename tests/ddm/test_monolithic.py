@@ -161,6 +161,8 @@ def test_robin_loop_equals_monolithic_solve(case):
             assert np.all(computed == 0), interface.name
     if problem.scene.load.force is not None:
         assert abs(summary["descent"] / traces["descent"] - 1) < 1e-6
+    if problem.scene.partial_slip:
+        assert abs(summary["stamp_shift"] / traces["shift"] - 1) < 1e-6
 
 
 def test_forces_balance(case):
@@ -173,9 +175,12 @@ def test_forces_balance(case):
         assert abs(summary[name] - force) < 1e-5 * force, name
     if case[2].scene.load.force is not None:
         assert abs(summary["total_force"] / case[2].scene.load.force - 1) < 1e-5
-    # on a flat base the friction force is mu times the normal one (none without it)
-    mu = case[2].scene.friction if case[2].scene.sliding else 0.0
-    assert abs(summary["tangential_force"] - mu * force) < 1e-6 * force
+    # on a flat base the friction force is mu times the normal one (none without it),
+    # under partial slip the stamp's tangential force
+    scene = case[2].scene
+    expected = (scene.load.tangential_force if scene.partial_slip
+                else scene.friction * force if scene.sliding else 0.0)
+    assert abs(summary["tangential_force"] - expected) < 1e-6 * force
 
 
 def test_every_patch_passes_on_what_it_receives(case):

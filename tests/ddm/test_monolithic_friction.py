@@ -27,6 +27,16 @@ def _sliding(model, friction=0.3, **overrides):
                    coatings=(replace(scene.coatings[0], start=-2.0),))
 
 
+def _partial(model, share, friction=0.5, **overrides):
+    """The cylinder scene as a full model under a tangential force ``share`` times the
+    friction's limit mu P (partial slip), its patch [-2 b, 2 b] a 2D coating or a
+    shell, or (model None) the bare block."""
+    scene = _file("cylinder", **overrides)
+    coatings = () if model is None else (replace(scene.coatings[0], start=-2.0, model=model),)
+    load = replace(scene.load, tangential_force=share * friction * scene.load.force)
+    return replace(scene, symmetric=False, friction=friction, coatings=coatings, load=load)
+
+
 CASES = {
     "sliding cylinder on a 2D coating, mu 0.3": (_sliding("elastic"), Settings(eps_u=1e-8)),
     "sliding cylinder on a shell, mu 0.3": (_sliding("shell"), Settings(eps_u=1e-8)),
@@ -40,6 +50,13 @@ CASES = {
         _sliding("shell"), Settings(eps_u=1e-8, inner_solve="direct")),
     "sliding cylinder 3 E on a 2D coating, mu 0.5, direct": (
         _sliding("elastic", 0.5, **{"indenter.E": 3.0}), Settings(eps_u=1e-8, inner_solve="direct")),
+    # partial slip: the stamp shifted to carry Q < mu P, each point sticking (the
+    # penalty on the slip) or slipping (mu p), both sets updated (robin.py,
+    # monolithic.edp); the bodies of one material, and a coated block under 3 E
+    "partial slip, bare block, Q = mu P / 2": (_partial(None, 0.5), Settings(eps_u=1e-8)),
+    "partial slip, 3 E on a 2D coating, Q = 0.6 mu P": (
+        _partial("elastic", 0.6, **{"indenter.E": 3.0}), Settings(eps_u=1e-8)),
+    "partial slip, shell, Q = 0.3 mu P": (_partial("shell", 0.3), Settings(eps_u=1e-8)),
 }
 
 

@@ -109,6 +109,27 @@ BAD = [
                                                     "symmetric = false\nsliding = true"),
                                               "thickness = 0.125", "thickness = 0.125\nfriction = 2.5"),
      ["coating[1].friction = 2.5", "[0, 2]"]),
+    ("a tangential force on a half model", _edit(BASE, "force = 0.02",
+                                                 "force = 0.02\ntangential_force = 0.004")
+     .replace("symmetric = true", "friction = 0.5"),
+     ["load.tangential_force needs symmetric = false"]),
+    ("a tangential force at the friction's limit", _edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+        "force = 0.02", "force = 0.02\ntangential_force = 0.01"),
+     ["load.tangential_force = 0.01 must be below mu P = 0.5 x 0.02", "sliding = true"]),
+    ("a tangential force while sliding", _edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5\nsliding = true"),
+        "force = 0.02", "force = 0.02\ntangential_force = 0.004"),
+     ["load.tangential_force = 0.004 with sliding = true"]),
+    ("a tangential force under a descent", _edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+        "force = 0.02", "displacement = 1e-3\ntangential_force = 0.004"),
+     ["load.tangential_force = 0.004 needs load.force"]),
+    ("a tangential force on a rigid indenter", _edit(_edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+        "force = 0.02", "force = 0.02\ntangential_force = 0.004"),
+        "height = 8.0\n[base]", "height = 8.0\nrigid = true\n[base]"),
+     ["indenter.rigid = true", "shift is not modelled"]),
     ("a friction in words", _edit(BASE, "symmetric = true",
                                   "symmetric = false\nsliding = true\nfriction = \"high\""),
      ["friction = 'high'", "[0, 2]"]),
@@ -144,14 +165,21 @@ def test_the_command_line_refuses_a_bad_scene_before_any_work(name, tmp_path):
     assert not out.exists()
 
 
-@pytest.mark.parametrize("settings, words", [
-    ("method = \"paper\"", ["method = 'paper' is frictionless"]),
-    ("inner_solve = \"two-level\"", ["inner_solve = 'two-level' with friction",
-                                     "the coarse level is frictionless"]),
-], ids=["the paper's loop", "two levels"])
-def test_friction_refuses_the_solves_it_has_not_before_any_work(settings, words, tmp_path):
+PARTIAL = _edit(BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+                "force = 0.02", "force = 0.02\ntangential_force = 0.004")
+
+
+@pytest.mark.parametrize("scene, settings, words", [
+    (SLIDING, "method = \"paper\"", ["method = 'paper' is frictionless"]),
+    (SLIDING, "inner_solve = \"two-level\"", ["inner_solve = 'two-level' with friction",
+                                              "the coarse level is frictionless"]),
+    (PARTIAL, "inner_solve = \"direct\"",
+     ["inner_solve = 'direct' with load.tangential_force", "stamp's shift"]),
+], ids=["the paper's loop", "two levels", "partial slip, direct"])
+def test_friction_refuses_the_solves_it_has_not_before_any_work(scene, settings, words,
+                                                                  tmp_path):
     path = tmp_path / "scene.toml"
-    path.write_text(SLIDING + f"[settings]\n{settings}\n")
+    path.write_text(scene + f"[settings]\n{settings}\n")
     out = tmp_path / "run"
     result = subprocess.run([sys.executable, "-m", "orchestrate", "solve", "--scene", str(path),
                              "--out", str(out)], cwd=PROJECT_DIR, capture_output=True,
