@@ -291,7 +291,8 @@ def zone_end_reached(problem, psi):
     if scene.contact_zone is None or not len(psi) or not problem.contacts:
         return None
     contacts = problem.contacts
-    ends = [(contacts[0].position[0, 0], psi[0]), (contacts[-1].position[-1, 0], psi[-1])]
+    last = sum(c.size for c in contacts) - 1       # the friction states come after
+    ends = [(contacts[0].position[0, 0], psi[0]), (contacts[-1].position[-1, 0], psi[last])]
     indenter, base = scene.indenter, scene.base
     low = 0.0 if scene.symmetric else max(indenter.centre - indenter.width, -base.top)
     high = min(indenter.width if scene.symmetric else indenter.centre + indenter.width, base.top)
