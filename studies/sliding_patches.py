@@ -5,8 +5,14 @@ correctness under friction is tests/ddm/test_monolithic.py's).
 The cylinder scene's bodies (R = 20 b, blocks 8 b wide and high, force 0.02 E b, a
 contact about 1.4 b wide) as a full model, over three patches 0.5 b long, 0.25 b apart,
 0.125 b thick, of 5 E (2D coatings), the indenter's lowest point at x1 = POSITIONS and
-sliding towards +x1 with mu = FRICTIONS (mu = 0: pressed without friction). Each
-position is its own run (the meshes are sized to the contact, so they follow it).
+sliding towards +x1 with mu = FRICTIONS (mu = 0: pressed without friction). The
+positions of one mu are a sweep that keeps what does not move: the interface elements
+of one size everywhere (element_size, not sized to the contact, which would follow it)
+and one contact zone over the whole traverse, so that the base and its patches keep
+their workers from position to position (a Session) and each position starts from the
+one before (start_from): only the indenter, the gap and the tractions change. Measured
+on three positions: the base's and the patches' workers kept, 51-53 iterations against
+100-106 and 1.4-1.9 s against 2.5-2.6 s as separate runs.
 
 Reported per run: the peak pressure, the largest peel (tensile normal stress) and shear
 on any bond, away from the patches' ends and within their end zones (where a bond's
@@ -28,8 +34,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from orchestrate import solve  # noqa: E402
-from orchestrate.model import Coating, load_scene  # noqa: E402
+from orchestrate import Session, solve  # noqa: E402
+from orchestrate.model import Coating, Settings, load_scene  # noqa: E402
+from orchestrate.model.scene import DEFAULT_ELEMENT_SIZE  # noqa: E402
 from orchestrate.paths import SCENES_DIR  # noqa: E402
 from studies.paths import RESULTS_DIR  # noqa: E402
 from studies.report import Column, Report, command_line, seconds  # noqa: E402
@@ -37,6 +44,8 @@ from studies.report import Column, Report, command_line, seconds  # noqa: E402
 PATCHES = ((-1.0, -0.5), (-0.25, 0.25), (0.5, 1.0))
 POSITIONS = tuple(np.round(np.arange(-1.5, 1.5 + 1e-9, 0.125), 6))
 FRICTIONS = (0.0, 0.2, 0.5)
+TRAVERSE_ZONE = (-2.5, 2.5)      # the contact zone of every position
+SETTINGS = Settings(element_size=DEFAULT_ELEMENT_SIZE)
 
 
 def sliding_scene(centre, friction):
@@ -44,7 +53,7 @@ def sliding_scene(centre, friction):
     patch = scene.coatings[0]
     coatings = tuple(Coating(start=start, end=end, thickness=patch.thickness, E=patch.E,
                              nu=patch.nu, model="elastic") for start, end in PATCHES)
-    return replace(scene, symmetric=False, coatings=coatings,
+    return replace(scene, symmetric=False, coatings=coatings, contact_zone=TRAVERSE_ZONE,
                    indenter=replace(scene.indenter, centre=float(centre)),
                    friction=friction, sliding=friction > 0)
 
@@ -59,8 +68,19 @@ def _largest(answers, quantity, at_ends):
     return max(values)
 
 
-def run(centre, friction):
-    summary = solve(sliding_scene(centre, friction)).summary
+def traverse(friction):
+    """The rows of every position under ``friction``, one sweep (the module's text)."""
+    rows, previous = [], None
+    with Session() as session:
+        for centre in POSITIONS:
+            result = solve(sliding_scene(centre, friction), SETTINGS, session=session,
+                           start_from=previous)
+            rows.append(_row(centre, friction, result.summary))
+            previous = result
+    return rows
+
+
+def _row(centre, friction, summary):
     answers = summary["answers"]
     tension = answers["substrate"].get("face_tension")
     return {"centre": centre, "mu": friction,
@@ -70,7 +90,8 @@ def run(centre, friction):
             "peel_at_ends": _largest(answers, "peel", True),
             "shear_at_ends": _largest(answers, "shear", True),
             "face_tension": tension["value"] if tension else 0.0,
-            "iterations": summary["iterations"], "seconds": summary["wall_time_s"]}
+            "iterations": summary["iterations"], "seconds": summary["wall_time_s"],
+            "workers_kept": len(summary["workers_kept"])}
 
 
 def plot(table, path):
@@ -101,11 +122,14 @@ def write_report(table, out, command="python -m studies.sliding_patches"):
     report.text("The cylinder scene as a full model over three 2D coating patches "
                 f"{', '.join(f'[{s:g}, {e:g}] b' for s, e in PATCHES)} (0.125 b, 5 E), the "
                 "indenter's lowest point at each x1, sliding towards +x1 (mu = 0: pressed "
-                "without friction); one run each, stresses in E. Figure: `sliding.png`.")
+                "without friction); the positions of one mu a sweep that keeps the base's "
+                "and the patches' workers and starts each position from the one before; "
+                "stresses in E. Figure: `sliding.png`.")
     worst = table.groupby("mu").agg(
         peel=("peel", "max"), shear=("shear", "max"), peel_at_ends=("peel_at_ends", "max"),
         shear_at_ends=("shear_at_ends", "max"), face_tension=("face_tension", "max"),
-        iterations=("iterations", "median"), seconds=("seconds", "median")).reset_index()
+        iterations=("iterations", "median"), seconds=("seconds", "median"),
+        kept=("workers_kept", "median")).reset_index()
     report.table(worst, [
         Column("mu", "mu", "{:g}"),
         Column("peel", "peel", "{:.4g}", "the largest over every position and bond, away "
@@ -117,7 +141,9 @@ def write_report(table, out, command="python -m studies.sliding_patches"):
         Column("face_tension", "face tension", "{:.4g}", "the base's largest tension along "
                "its face"),
         Column("iterations", "iterations", "{:g}", "the median over the positions"),
-        Column("seconds", "time", seconds, "the median run's")])
+        Column("seconds", "time", seconds, "the median run's"),
+        Column("kept", "workers kept", "{:g}", "the median run's workers kept from the "
+               "position before (of 5)")])
     dry = worst[worst.mu == 0].iloc[0]
     for _, row in worst[worst.mu > 0].iterrows():
         report.finding(
@@ -133,7 +159,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", default=str(RESULTS_DIR / "sliding"))
     args = parser.parse_args(argv)
-    table = pd.DataFrame([run(centre, mu) for mu in FRICTIONS for centre in POSITIONS])
+    table = pd.DataFrame([row for mu in FRICTIONS for row in traverse(mu)])
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
     os.makedirs(args.out, exist_ok=True)
     table.to_csv(os.path.join(args.out, "sliding.csv"), index=False)
