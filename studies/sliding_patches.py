@@ -35,8 +35,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from orchestrate import Session, solve  # noqa: E402
-from orchestrate.model import Coating, Settings, load_scene  # noqa: E402
-from orchestrate.model.scene import DEFAULT_ELEMENT_SIZE  # noqa: E402
+from orchestrate.model import DEFAULT_ELEMENT_SIZE, Coating, Settings, load_scene  # noqa: E402
 from orchestrate.paths import SCENES_DIR  # noqa: E402
 from studies.paths import RESULTS_DIR  # noqa: E402
 from studies.report import Column, Report, command_line, seconds  # noqa: E402

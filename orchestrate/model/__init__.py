@@ -5,13 +5,13 @@ the contact's half-width and each coating model's error (estimate.py). Pure Pyth
 mesh, no process."""
 
 from orchestrate.model.estimate import contact_half_width, estimated_errors
-from orchestrate.model.scene import (MODELS, Base, Coating, Indenter, Load, Scene, Settings,
-                                     scene_from_dict, to_dict)
+from orchestrate.model.scene import (DEFAULT_ELEMENT_SIZE, MODELS, Base, Coating, Indenter,
+                                     Load, Scene, Settings, scene_from_dict, to_dict)
 from orchestrate.model.scene_file import (apply_overrides, load_scene, paper_scene,
                                           scene_and_settings, shorthand_values)
 from orchestrate.model.units import Units
 
-__all__ = ["MODELS", "Base", "Coating", "Indenter", "Load", "Scene", "Settings", "Units",
+__all__ = ["DEFAULT_ELEMENT_SIZE", "MODELS", "Base", "Coating", "Indenter", "Load", "Scene", "Settings", "Units",
            "apply_overrides", "contact_half_width", "estimated_errors", "load_scene",
            "paper_scene", "scene_and_settings", "scene_from_dict", "shorthand_values",
            "to_dict"]
