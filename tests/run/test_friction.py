@@ -113,3 +113,15 @@ def test_a_patch_may_have_its_own_friction():
     assert {f.name: f.friction[0] for f in problem.frictions} == {
         "friction-base1": 0.3, "friction-coating1": 0.2, "friction-coating2": 0.5,
         "friction-base2": 0.3}
+
+
+def test_partial_slip_between_unlike_bodies_says_it_is_proportional_loading():
+    """Pressing alone slips where Dundurs' beta is not 0: the one-step answer is not
+    pressing-then-pulling's, and the run says so; between bodies of one material not."""
+    from orchestrate.run.plan import prepare
+    coated = _sliding(0.5)
+    coated = replace(coated, sliding=False,
+                     load=replace(coated.load, tangential_force=0.2 * 0.5 * coated.load.force))
+    assert [w["code"] for w in prepare(coated, SETTINGS).warnings] == ["partial_slip_path"]
+    bare = replace(coated, coatings=())
+    assert prepare(bare, SETTINGS).warnings == ()
