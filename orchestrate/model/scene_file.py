@@ -241,8 +241,9 @@ def _set(scene, key, value):
             raise ParameterError(f"{key}: the scene has no coating", key)
         return _copy(scene, coatings=tuple(_copy(c, **{name: value})
                                                 for c in scene.coatings))
-    if table == "load":   # one load replaces the other
-        return _copy(scene, load=_copy(Load(), **{name: value}))
+    if table == "load" and name in ("displacement", "force"):   # one replaces the other
+        return _copy(scene, load=_copy(Load(tangential_force=scene.load.tangential_force),
+                                       **{name: value}))
     return _copy(scene, **{table: _copy(getattr(scene, table), **{name: value})})
 
 

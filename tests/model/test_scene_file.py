@@ -214,3 +214,14 @@ def test_the_paper_scene_is_the_papers():
     assert (scene.base.width, scene.base.height) == (4.0, 8.0)
     assert (scene.coatings[0].start, scene.coatings[0].end) == (0.0, 2.0)
     assert scene.load.displacement == 2.778999e-3
+
+
+def test_a_tangential_force_is_set_beside_the_force():
+    """A flag that sets the tangential force keeps the force (the force and the descent
+    replace each other), and the force set after it keeps the tangential force."""
+    from orchestrate.model.scene_file import apply_overrides
+    scene, _ = load_scene(SCENES_DIR / "partial_slip.toml")
+    pulled = apply_overrides(scene, {"load.tangential_force": 0.004})
+    assert (pulled.load.force, pulled.load.tangential_force) == (0.02, 0.004)
+    pressed = apply_overrides(scene, {"load.force": 0.03})
+    assert (pressed.load.force, pressed.load.tangential_force) == (0.03, 0.005)
