@@ -78,7 +78,7 @@ class RobinLaw:
         return np.atleast_2d(g)
 
 
-def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=()):
+def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=(), slip_origin=None):
     """The Robin law of every side of every interface for the contact set Psi
     (concatenated over the contact interfaces): ``{(i, side): RobinLaw}``. ``sides``:
     every side's Robin parameter gamma and whether it holds its inactive points, in
@@ -119,7 +119,9 @@ def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=()):
     Robin-Robin exchange at the contact side's gamma (``sides`` of the contact):
         friction, sticking:  alpha = gamma,  g = -u' + c t' / gamma.
     The friction states follow the contact set Psi, after its points (StateLayout's
-    friction_slices).
+    friction_slices). On a load path (Scene.load.path) a point sticks where it stood at
+    the step before: t = (s0 - u_A - u_B)/theta, ``slip_origin`` s0 its slip then (in
+    friction_slices' order; None: 0), the contact's law with s0 for the gap.
 
     A side that holds its inactive points: alpha = gamma on all of the contact, and
     where Psi = 0 the data is the side's own trace, g = u^k. The fixed point is the same
@@ -127,6 +129,10 @@ def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=()):
     factorises once per run (robin_parameters.py says where that pays)."""
     laws = {}
     psi_of = dict((i, psi[where]) for i, where in layout.contact_slices())
+    origin_of = {i: (np.zeros(where.stop - where.start) if slip_origin is None
+                     else slip_origin[where.start - layout.contact_points:
+                                      where.stop - layout.contact_points])
+                 for i, where in layout.friction_slices()}
     for i, interface in enumerate(problem.interfaces):
         n, ones, zeros = interface.size, np.ones(interface.size), np.zeros(interface.size)
         for side in (0, 1):
@@ -146,7 +152,7 @@ def robin_laws(problem, layout, psi, theta, sides, direct=False, inside=()):
                 alpha = np.full(n, gamma) if held else gamma * psi_of[interface.contact]
                 law = RobinLaw(np.where(stick, gamma_s, alpha), np.where(stick, 0.0, 1.0),
                                np.where(stick, -1.0, 0.0), np.where(stick, c_s / gamma_s, 0.0),
-                               np.zeros((1, n)), interface.contact,
+                               np.where(stick, origin_of[i], 0.0)[None, :], interface.contact,
                                np.where(slip, -phi * interface.friction / gamma, 0.0))
             elif interface.kind == "contact":
                 active = psi_of[i] > 0
@@ -215,10 +221,11 @@ def state_penetration(layout, x):
     return penetration(layout.gap, layout.contact(x, "u", 0), layout.contact(x, "u", 1))
 
 
-def updated_contact_set(layout, psi, x, partial_slip=False):
+def updated_contact_set(layout, psi, x, partial_slip=False, slip_origin=None):
     """The semi-smooth Newton update of Psi from the state x solved with it
     (contact.updated_active_set), and under partial slip of the friction states after
-    it (updated_friction_states); under full sliding they stay 1."""
+    it (updated_friction_states, the slips from ``slip_origin``: robin_laws'); under
+    full sliding they stay 1."""
     n = layout.contact_points
     contact = updated_active_set(psi[:n], state_penetration(layout, x),
                                  contact_traction(layout, x))
@@ -232,10 +239,13 @@ def updated_contact_set(layout, psi, x, partial_slip=False):
         face = layout.interfaces[i]
         c = face.contact
         pressure = -0.5 * (layout.get(x, "t", c, 0) + layout.get(x, "t", c, 1))
+        slip = layout.get(x, "u", i, 0) + layout.get(x, "u", i, 1)
+        if slip_origin is not None:
+            slip = slip - slip_origin[where.start - n:where.stop - n]
         states.append(updated_friction_states(
             psi[slices[c]] > 0, contact[slices[c]] > 0, psi[where],
-            0.5 * (layout.get(x, "t", i, 0) + layout.get(x, "t", i, 1)),
-            layout.get(x, "u", i, 0) + layout.get(x, "u", i, 1), face.friction * pressure))
+            0.5 * (layout.get(x, "t", i, 0) + layout.get(x, "t", i, 1)), slip,
+            face.friction * pressure))
     return np.concatenate([contact] + states)
 
 
@@ -315,7 +325,7 @@ class ConvergenceMonitor:
 
 
 def run_robin_loop(solve, problem, strategy, progress=None, start=None, robin_maps=None,
-                   coarse=None):
+                   coarse=None, slip_origin=None):
     """Iterate until converged or stopped; the workers keep the fields of the last solve.
 
     ``strategy``: the loop, its laws' parameters and knobs (orchestrate/ddm/strategy.py).
@@ -327,13 +337,16 @@ def run_robin_loop(solve, problem, strategy, progress=None, start=None, robin_ma
     ``robin_maps(data)``: every subdomain's Robin map at the coefficients of ``data``, or
     None (Subdomains.robin_maps); with them the active-set loop solves each contact
     set's fixed point directly (orchestrate/ddm/interface_system.py). ``coarse``: a
-    CoarseCorrection (orchestrate/ddm/coarse.py) for the iterated active-set loop."""
+    CoarseCorrection (orchestrate/ddm/coarse.py) for the iterated active-set loop.
+    ``slip_origin``: on a load path, every friction point's slip at the step before
+    (robin_laws), else None."""
     if strategy.loop == "paper":
         return _PaperLoop(solve, problem, strategy, progress).run()
     loop = _ActiveSetLoop(solve, problem, strategy, progress)
     loop.start_state = start
     loop.robin_maps = robin_maps
     loop.coarse = coarse
+    loop.slip_origin = slip_origin
     return loop.run()
 
 
@@ -370,9 +383,11 @@ class _Loop:
         self.estimate = math.inf
         self.direct = False       # whether this iteration solved its contact set directly
 
+    slip_origin = None        # a load path's slips at the step before (robin_laws)
+
     def laws(self, psi, direct=False):
         return robin_laws(self.problem, self.layout, psi, self.theta, self.strategy.sides,
-                          direct, self.strategy.bonds_inside)
+                          direct, self.strategy.bonds_inside, self.slip_origin)
 
     def iterate(self, x, psi):
         """Solve every subdomain for the state x and the contact set psi; return x~. The
@@ -638,7 +653,7 @@ class _ActiveSetLoop(_Loop):
             image = self.iterate(x, psi)
             change = self.relative_change(image, x)
             failure = self.monitor.check(iteration, image, max(change[:2]))
-            new_psi = updated_contact_set(layout, psi, image, partial_slip)
+            new_psi = updated_contact_set(layout, psi, image, partial_slip, self.slip_origin)
             psi_settled = np.array_equal(new_psi, psi)
             if system is not None:
                 # image is x up to rounding; the refinement step sizes the rounding

@@ -50,6 +50,7 @@ SHEAR_FACTOR_RANGE = (1e-3, 1e3)   # k' of the shell
 # Coulomb's mu: metals in air reach about 1, clean metals in vacuum more; beyond 2 the
 # friction traction would exceed twice the pressure, no contact of coated parts does
 FRICTION_RANGE = (0.0, 2.0)
+LOAD_PATHS = ("at_once", "pressed_first")   # partial slip: the forces together, or in turn
 PROFILES = ("circle", "parabola")
 FACE_MESHES = ("shaped", "flat")
 SHAPES = ("block", "roller")
@@ -309,6 +310,9 @@ class Load:
     displacement: Optional[float] = None
     force: Optional[float] = None
     tangential_force: Optional[float] = None
+    # under partial slip: "at_once" (the force and the tangential force together) or
+    # "pressed_first" (the force alone, then the tangential force from that state)
+    path: str = "at_once"
 
     def check(self, prefix):
         given = [name for name in ("displacement", "force") if getattr(self, name) is not None]
@@ -318,6 +322,10 @@ class Load:
         _require(_finite(getattr(self, given[0])) and getattr(self, given[0]) >= 0,
                  prefix + given[0],
                  f"{prefix}{given[0]} = {getattr(self, given[0])!r} must be a non-negative number")
+        _choice(prefix + "path", self.path, LOAD_PATHS)
+        _require(self.path == "at_once" or self.tangential_force is not None, prefix + "path",
+                 f"{prefix}path = {self.path!r} needs {prefix}tangential_force: a path is "
+                 "the order of the force and the tangential force")
         if self.tangential_force is not None:
             _require(_finite(self.tangential_force) and self.tangential_force >= 0,
                      prefix + "tangential_force",

@@ -90,7 +90,7 @@ TIMER_PREFIXES = ("cpu_", "back_")   # history.csv: seconds per subdomain (cpu_b
 # Summary entries kept as they are: the scene is written as given (in its units), the
 # settings and the strategy are in b and E by definition (the strategy says its theta and
 # gamma in the scene's units too), the rest are counts by subdomain or texts.
-SUMMARY_AS_IS = ("scene", "settings", "status", "reason", "dofs", "units", "not_estimated",
+SUMMARY_AS_IS = ("scene", "settings", "pressed_step", "status", "reason", "dofs", "units", "not_estimated",
                  "strategy", "estimated_unknowns", "model", "started_from", "inner_solve_used",
                  "provenance", "warnings", "sweep_point", "inner_solve_fallback")     # warnings: texts and ratios (validity.py)
 

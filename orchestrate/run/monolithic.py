@@ -5,6 +5,7 @@ set iterated to a fixed point. It solves the same discrete problem as the Robin 
 (same forms, same interface points), which makes it the yardstick of the loop's
 correctness."""
 
+from dataclasses import replace
 import os
 import tempfile
 
@@ -17,13 +18,13 @@ from orchestrate.workers.subdomains import geometry_arguments, write_inputs
 from orchestrate.run.plan import prepare
 
 
-def solve_monolithic(problem, workdir):
+def solve_monolithic(problem, workdir, slip_origin=None):
     """The monolithic solution's traces, {(interface index, side): trace} (shapes as the
     Robin loop's), with "solves" and "descent"."""
     files = write_inputs(problem, workdir)
     problem_file = os.path.join(workdir, "problem.txt")
     output = os.path.join(workdir, "monolithic_traces.txt")
-    write_problem(problem, files, problem_file)
+    write_problem(problem, files, problem_file, slip_origin=slip_origin)
     tangential = problem.scene.load.tangential_force
     freefem.run_script("monolithic.edp", ["-problem", problem_file, "-output", output,
                                           *geometry_arguments(problem.scene),
@@ -68,19 +69,30 @@ def interface_stresses(problem, traces):
             sigma_n = contact_stress(contact.gap, traces[interface.contact, 0],
                                      traces[interface.contact, 1], theta)
             phi = traces["phi", i]
+            origin = traces.get(("origin", i), 0.0)
             stresses[i] = np.where(sigma_n < 0, np.where(
-                phi != 0, -phi * interface.friction * sigma_n, -(a + b) / theta), 0.0)
+                phi != 0, -phi * interface.friction * sigma_n, (origin - a - b) / theta), 0.0)
         else:
             stresses[i] = bond_traction(a, b, theta)
         stresses[i] = limits_on_axis(interface, stresses[i])
     return stresses
 
 
-def monolithic_of(problem):
+def monolithic_of(problem, pressed=None):
     """The monolithic solution of a discrete problem (a run's plan's, say), in a private
-    folder: its traces (solve_monolithic) and interface stresses, in b and E."""
+    folder: its traces (solve_monolithic) and interface stresses, in b and E. On a load
+    path (Scene.load.path), ``pressed``: the problem of its first step, solved first,
+    whose friction slips the second's sticking points keep."""
     with tempfile.TemporaryDirectory(prefix="monolithic-") as workdir:
-        traces = solve_monolithic(problem, workdir)
+        origin = None
+        if pressed is not None:
+            first_dir = os.path.join(workdir, "pressed")
+            os.makedirs(first_dir)
+            first = solve_monolithic(pressed, first_dir)
+            origin = {i: first[i, 0] + first[i, 1] for i, f in enumerate(pressed.interfaces)
+                      if f.kind == "friction"}
+        traces = solve_monolithic(problem, workdir, origin)
+        traces.update({("origin", i): value for i, value in (origin or {}).items()})
     return traces, interface_stresses(problem, traces)
 
 
@@ -88,7 +100,11 @@ def monolithic_solution(scene, settings):
     """The monolithic solution of a scene: the problem a run of it solves (its plan's:
     in b and E, every "auto" patch's model chosen), its traces and interface stresses."""
     problem = prepare(scene, settings).problem
-    return (problem, *monolithic_of(problem))
+    pressed = None
+    if scene.partial_slip and scene.load.path == "pressed_first":
+        pressed = prepare(replace(scene, load=replace(scene.load, tangential_force=0.0,
+                                                      path="at_once")), settings).problem
+    return (problem, *monolithic_of(problem, pressed))
 
 
 def monolithic_curves(scene, settings):

@@ -31,10 +31,14 @@ stagnates writes only history.csv and a summary.json that says why.
 """
 
 import contextlib
+from dataclasses import replace
 import math
+from pathlib import Path
 import time
+from types import SimpleNamespace
 
 import numpy as np
+import pandas as pd
 
 from orchestrate.ddm.contact import (contact_half_width, contact_zones, limits_on_axis,
                                      stick_zones)
@@ -94,15 +98,37 @@ def solve_run(scene, settings, out_dir, progress=None, overwrite=False, start_fr
     estimate does not cover), is solved again with the 2D coating before anything is
     written; summary.json's model_choice says so in its entry (fallback_from, _reason)."""
     freefem.executable()             # a missing FreeFEM is reported before any work
-    fallbacks = []
-    while True:
-        try:
-            return _solve_once(scene, settings, out_dir, progress, overwrite, start_from,
-                               session, sweep_point, start_name, strict, keep, fallbacks)
-        except _ModelFallback as fallback:
-            fallbacks.append(fallback.record)
-            scene = scene.with_models(["elastic" if n == fallback.record["patch"] else c.model
-                                       for n, c in enumerate(scene.coatings, start=1)])
+    fallbacks, pressed = [], None
+    path = scene.partial_slip and scene.load.path == "pressed_first"
+    with (Session() if path and session is None else contextlib.nullcontext(session)) as session:
+        if path:                     # the force alone first, its workers kept for the pull
+            pressed = _pressed_step(scene, settings, progress, start_from, session)
+            start_from, start_name = pressed, "the pressed step (load.path)"
+        while True:
+            try:
+                return _solve_once(scene, settings, out_dir, progress, overwrite, start_from,
+                                   session, sweep_point, start_name, strict, keep, fallbacks,
+                                   pressed)
+            except _ModelFallback as fallback:
+                fallbacks.append(fallback.record)
+                scene = scene.with_models(["elastic" if n == fallback.record["patch"]
+                                           else c.model
+                                           for n, c in enumerate(scene.coatings, start=1)])
+
+
+def _pressed_step(scene, settings, progress, start_from, session):
+    """A load path's first step (Scene.load.path = "pressed_first"): the scene under its
+    force alone, frictional (its points stick where they touch, and slip where pressing
+    alone makes them), solved in a folder of its own; its summary and tables, which
+    start the pull, whose sticking points stay where they stood (robin.robin_laws'
+    slip_origin)."""
+    pressed = replace(scene, load=replace(scene.load, tangential_force=0.0, path="at_once"))
+    with WorkFolder() as scratch:
+        files = solve_run(pressed, settings, Path(scratch) / "pressed", progress=progress,
+                          start_from=start_from, session=session, keep=True)
+    tables = {name: pd.DataFrame(files.tables.get(f"{name}.csv", {}))
+              for name in ("contact", "interface", "traces")}
+    return SimpleNamespace(summary=files.summary, **tables)
 
 
 class _ModelFallback(Exception):
@@ -147,10 +173,11 @@ def _with_fallbacks(report, fallbacks):
 
 
 def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, session,
-                sweep_point, start_name, strict, keep, fallbacks):
+                sweep_point, start_name, strict, keep, fallbacks, pressed=None):
     """solve_run's run of one choice of models (``fallbacks``: the patches solved again
-    with the 2D coating so far): _ModelFallback for a patch to solve again, before its
-    folder is written."""
+    with the 2D coating so far; ``pressed``: a load path's first step, whose state
+    ``start_from`` is): _ModelFallback for a patch to solve again, before its folder is
+    written."""
     plan = prepare(scene, settings)
     if strict and plan.warnings:
         raise WarnedBeforeWork(list(plan.warnings))
@@ -158,6 +185,12 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
     strategy = plan.strategy         # how it is solved, decided once (ddm/strategy.py)
     start = (start_state(start_from, StateLayout(problem.interfaces))
              if start_from is not None else None)         # checked before any work
+    slip_origin = None
+    if pressed is not None:          # the slips the pressed step left (robin_laws)
+        layout = StateLayout(problem.interfaces)
+        slip_origin = np.concatenate([np.zeros(0)] + [
+            layout.get(start, "u", i, 0) + layout.get(start, "u", i, 1)
+            for i in layout.friction_indices])
     forms = forms_hashes()           # what the workers started now will compile
     started = time.perf_counter()
     with (RunFolder(out_dir, overwrite) as folder, WorkFolder() as workdir,
@@ -181,7 +214,7 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
             # a neighbour's answer (fewer contact sets: measured 1-2 against 0-9 at level 3)
             first_iterate = start if coarse is None else None
             loop = run_robin_loop(subdomains.solve, problem, strategy, progress, first_iterate,
-                                  subdomains.robin_maps, coarse)
+                                  subdomains.robin_maps, coarse, slip_origin)
             inner_solve_used = _inner_solve_used(loop.history, coarse is not None)
             fallback = None
             if (not loop.converged and loop.status in FALLBACK_STATUSES
@@ -194,7 +227,8 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
                 subdomains.solve_directly()
                 earlier = loop.history
                 loop = run_robin_loop(subdomains.solve, problem, strategy, progress,
-                                      first_iterate, subdomains.robin_maps)
+                                      first_iterate, subdomains.robin_maps,
+                                      slip_origin=slip_origin)
                 for row in loop.history:
                     row["iteration"] += len(earlier)
                 loop.history = earlier + loop.history
@@ -221,6 +255,10 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
             "reason": loop.reason,
             "converged": loop.converged,
             "stamp_shift": stamp_shift if scene.partial_slip else None,
+            # a load path's first step, in the scene's units
+            "pressed_step": None if pressed is None else {
+                key: pressed.summary[key] for key in ("iterations", "descent", "stick_zones",
+                                                      "wall_time_s")},
             "iterations": loop.iterations,
             "final_relative_change": loop.history[-1]["relative_change"],
             "error_estimate": loop.error_estimate,
@@ -260,7 +298,8 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
             summary["warnings"].append(forms_edited_warning())
         summary = scaled_summary(summary, scales)
         summary["wall_time_s"] = (time.perf_counter() - started    # with the runs left
-                                  + sum(fallback["seconds"] for fallback in fallbacks))
+                                  + sum(fallback["seconds"] for fallback in fallbacks)
+                                  + (pressed.summary["wall_time_s"] if pressed else 0.0))
         run_files.write_summary(summary, scene.units)
         checkpoint("committing")
         folder.commit()

@@ -141,13 +141,13 @@ def scene_warnings(scene, given, settings, say, a):
     units (the estimate's quantities are ratios: any consistent units do), and its a
     priori contact half-width ``a`` in those units."""
     warnings = []
-    if scene.partial_slip and _unlike_bodies(scene):
+    if scene.partial_slip and scene.load.path == "at_once" and _unlike_bodies(scene):
         warnings.append(_warning(
             "partial_slip_path", "load.tangential_force between unlike bodies (a coating, "
             "or an indenter of another material): the force and the tangential force are "
             "applied at once, while pressing alone already slips between unlike bodies "
             "(Dundurs' beta is not 0), so the answer is that of proportional loading, not "
-            "of pressing, then pulling; load steps are not solved yet"))
+            "of pressing, then pulling (load.path = \"pressed_first\")"))
     depth = base_depth(scene.base)
     for number, (coating, asked) in enumerate(zip(scene.coatings, given.coatings), start=1):
         share = coating.thickness / depth

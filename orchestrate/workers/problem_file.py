@@ -2,14 +2,17 @@
 read by the monolithic solve (monolithic.edp: every subdomain and interface) and by a
 coated base's worker (coated_base.edp: the base, its coatings and their bonds)."""
 
+import numpy as np
+
 from orchestrate.workers.exchange import ShellNumbers
 
 
-def write_problem(problem, files, path, names=None):
+def write_problem(problem, files, path, names=None, slip_origin=None):
     """The problem file of the subdomains ``names`` (None: every one, in the problem's
     order) and the interfaces between them; ``files``: write_inputs'. A part of the
     problem (``names`` given) carries no load and takes only its bonds: its contacts are
-    the Robin loop's."""
+    the Robin loop's. ``slip_origin``: {friction interface index: its
+    points' slips at a load path's step before}, else 0."""
     scene = problem.scene
     whole = names is None
     names = list(problem.subdomains) if whole else list(names)
@@ -47,5 +50,8 @@ def write_problem(problem, files, path, names=None):
             lines.append(" ".join(map(str, [0 if interface.kind == "contact" else 1, *ends])))
             values = interface.gap
         lines.append(f"{interface.size} " + " ".join(map(repr, values.tolist())))
+        if interface.kind == "friction":    # the slips a sticking point keeps
+            origin = (slip_origin or {}).get(i, np.zeros(interface.size))
+            lines.append(f"{interface.size} " + " ".join(map(repr, np.asarray(origin).tolist())))
     with open(path, "w") as out:
         out.write("\n".join(lines) + "\n")

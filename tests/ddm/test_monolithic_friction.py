@@ -37,6 +37,10 @@ def _partial(model, share, friction=0.5, **overrides):
     return replace(scene, symmetric=False, friction=friction, coatings=coatings, load=load)
 
 
+def _pressed_first(scene):
+    return replace(scene, load=replace(scene.load, path="pressed_first"))
+
+
 CASES = {
     "sliding cylinder on a 2D coating, mu 0.3": (_sliding("elastic"), Settings(eps_u=1e-8)),
     "sliding cylinder on a shell, mu 0.3": (_sliding("shell"), Settings(eps_u=1e-8)),
@@ -57,6 +61,10 @@ CASES = {
     "partial slip, 3 E on a 2D coating, Q = 0.6 mu P": (
         _partial("elastic", 0.6, **{"indenter.E": 3.0}), Settings(eps_u=1e-8)),
     "partial slip, shell, Q = 0.3 mu P": (_partial("shell", 0.3), Settings(eps_u=1e-8)),
+    # a load path: pressed alone first (its sticking points keep where they stood after
+    # it), then pulled; both steps in the monolithic solve too
+    "pressed, then pulled: 3 E on a 2D coating, Q = mu P / 2": (
+        _pressed_first(_partial("elastic", 0.5, **{"indenter.E": 3.0})), Settings(eps_u=1e-8)),
 }
 
 
