@@ -1,6 +1,7 @@
 """The Robin loop against the monolithic solve under friction (full sliding): the
 tangential traces carry mu p (robin.robin_laws), the monolithic matrix the
-non-symmetric friction block (freefem/monolithic.edp); the same checks as
+non-symmetric friction block (freefem/monolithic.edp; partial slip:
+test_monolithic_partial_slip.py); the same checks as
 test_monolithic.py's, on its own scenes (a file of its own, so that the test processes
 share the work). At eps_u 1e-8: a friction side's data holds mu p over its small Robin
 parameter (robin_parameters.FRICTION_SHARE), whose rounding holds the estimate near
@@ -27,20 +28,6 @@ def _sliding(model, friction=0.3, **overrides):
                    coatings=(replace(scene.coatings[0], start=-2.0),))
 
 
-def _partial(model, share, friction=0.5, **overrides):
-    """The cylinder scene as a full model under a tangential force ``share`` times the
-    friction's limit mu P (partial slip), its patch [-2 b, 2 b] a 2D coating or a
-    shell, or (model None) the bare block."""
-    scene = _file("cylinder", **overrides)
-    coatings = () if model is None else (replace(scene.coatings[0], start=-2.0, model=model),)
-    load = replace(scene.load, tangential_force=share * friction * scene.load.force)
-    return replace(scene, symmetric=False, friction=friction, coatings=coatings, load=load)
-
-
-def _pressed_first(scene):
-    return replace(scene, load=replace(scene.load, path="pressed_first"))
-
-
 CASES = {
     "sliding cylinder on a 2D coating, mu 0.3": (_sliding("elastic"), Settings(eps_u=1e-8)),
     "sliding cylinder on a shell, mu 0.3": (_sliding("shell"), Settings(eps_u=1e-8)),
@@ -54,17 +41,6 @@ CASES = {
         _sliding("shell"), Settings(eps_u=1e-8, inner_solve="direct")),
     "sliding cylinder 3 E on a 2D coating, mu 0.5, direct": (
         _sliding("elastic", 0.5, **{"indenter.E": 3.0}), Settings(eps_u=1e-8, inner_solve="direct")),
-    # partial slip: the stamp shifted to carry Q < mu P, each point sticking (the
-    # penalty on the slip) or slipping (mu p), both sets updated (robin.py,
-    # monolithic.edp); the bodies of one material, and a coated block under 3 E
-    "partial slip, bare block, Q = mu P / 2": (_partial(None, 0.5), Settings(eps_u=1e-8)),
-    "partial slip, 3 E on a 2D coating, Q = 0.6 mu P": (
-        _partial("elastic", 0.6, **{"indenter.E": 3.0}), Settings(eps_u=1e-8)),
-    "partial slip, shell, Q = 0.3 mu P": (_partial("shell", 0.3), Settings(eps_u=1e-8)),
-    # a load path: pressed alone first (its sticking points keep where they stood after
-    # it), then pulled; both steps in the monolithic solve too
-    "pressed, then pulled: 3 E on a 2D coating, Q = mu P / 2": (
-        _pressed_first(_partial("elastic", 0.5, **{"indenter.E": 3.0})), Settings(eps_u=1e-8)),
 }
 
 

@@ -131,12 +131,12 @@ def test_pressing_then_pulling_is_pulling_at_once_between_bodies_of_one_material
     """With Dundurs' beta = 0 pressing makes no slip, so the load path's answer is the
     one-step answer: measured within 1e-5 of the peak pressure (the two bodies' meshes
     differ, and pressing leaves slips of that order at the contact's edges); between
-    unlike bodies it is not (the stick zone's trailing end moves by 0.025 b)."""
-    def pulled(coatings, path, E=1.0):
+    unlike bodies it is not (the stick zone's trailing end moved by 0.025 b under a
+    cylinder of 3 E on the 2D coating), and a run at once says so."""
+    def pulled(coatings, path):
         scene = _sliding(0.5)
         load = replace(scene.load, tangential_force=0.5 * 0.5 * scene.load.force, path=path)
-        return solve(replace(scene, sliding=False, coatings=coatings, load=load,
-                             indenter=replace(scene.indenter, E=E)), SETTINGS)
+        return solve(replace(scene, sliding=False, coatings=coatings, load=load), SETTINGS)
     once, path = pulled((), "at_once"), pulled((), "pressed_first")
     scale = once.contact.sigma_n.abs().max()
     for column in ("sigma_n", "sigma_t"):
@@ -144,8 +144,11 @@ def test_pressing_then_pulling_is_pulling_at_once_between_bodies_of_one_material
                                    atol=1e-4 * scale)
     assert path.summary["stamp_shift"] == pytest.approx(once.summary["stamp_shift"], rel=1e-4)
     assert path.summary["pressed_step"]["iterations"] > 0
-    coated = _sliding(0.5).coatings
-    once, path = pulled(coated, "at_once", 3.0), pulled(coated, "pressed_first", 3.0)
-    assert abs(path.summary["stick_zones"][0][0] - once.summary["stick_zones"][0][0]) > 0.01
-    assert [w["code"] for w in once.summary["warnings"]].count("partial_slip_path") == 1
-    assert "partial_slip_path" not in [w["code"] for w in path.summary["warnings"]]
+    # unlike bodies: warned at once, not on the path (the loop against the monolithic
+    # solve's two steps there: test_monolithic_partial_slip.py)
+    from orchestrate.run.plan import prepare
+    coated = _sliding(0.5)
+    load = replace(coated.load, tangential_force=0.25 * coated.load.force)
+    for path_name, codes in (("at_once", ["partial_slip_path"]), ("pressed_first", [])):
+        scene = replace(coated, sliding=False, load=replace(load, path=path_name))
+        assert [w["code"] for w in prepare(scene, SETTINGS).warnings] == codes

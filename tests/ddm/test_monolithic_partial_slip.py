@@ -1,0 +1,52 @@
+"""The Robin loop against the monolithic solve under partial slip (the stamp's shift, the
+stick and slip states) and on a load path (pressed, then pulled): the same checks as
+test_monolithic.py's (a file of its own, so that the test processes share the work)."""
+
+from dataclasses import replace
+
+import pytest
+
+from orchestrate.model.scene import Settings
+from orchestrate.run.monolithic import monolithic_solution
+from orchestrate.run.solve import solve
+from tests.ddm.test_monolithic import (_file, test_every_patch_passes_on_what_it_receives,  # noqa: F401
+                                       test_forces_balance, test_robin_loop_equals_monolithic_solve)
+
+
+def _partial(model, share, friction=0.5, **overrides):
+    """The cylinder scene as a full model under a tangential force ``share`` times the
+    friction's limit mu P (partial slip), its patch [-2 b, 2 b] a 2D coating or a
+    shell, or (model None) the bare block."""
+    scene = _file("cylinder", **overrides)
+    coatings = () if model is None else (replace(scene.coatings[0], start=-2.0, model=model),)
+    load = replace(scene.load, tangential_force=share * friction * scene.load.force)
+    return replace(scene, symmetric=False, friction=friction, coatings=coatings, load=load)
+
+
+def _pressed_first(scene):
+    return replace(scene, load=replace(scene.load, path="pressed_first"))
+
+
+CASES = {
+    # partial slip: the stamp shifted to carry Q < mu P, each point sticking (the
+    # penalty on the slip) or slipping (mu p), both sets updated (robin.py,
+    # monolithic.edp); the bodies of one material, and a coated block under 3 E
+    "partial slip, bare block, Q = mu P / 2": (_partial(None, 0.5), Settings(eps_u=1e-8)),
+    "partial slip, 3 E on a 2D coating, Q = 0.6 mu P": (
+        _partial("elastic", 0.6, **{"indenter.E": 3.0}), Settings(eps_u=1e-8)),
+    "partial slip, shell, Q = 0.3 mu P": (_partial("shell", 0.3), Settings(eps_u=1e-8)),
+    # a load path: pressed alone first (its sticking points keep where they stood after
+    # it), then pulled; both steps in the monolithic solve too
+    "pressed, then pulled: 3 E on a 2D coating, Q = mu P / 2": (
+        _pressed_first(_partial("elastic", 0.5, **{"indenter.E": 3.0})), Settings(eps_u=1e-8)),
+}
+
+
+@pytest.fixture(scope="module", params=[pytest.param(name, marks=pytest.mark.slow)
+                                        for name in CASES])
+def case(request, tmp_path_factory):
+    scene, settings = CASES[request.param]
+    out = tmp_path_factory.mktemp("partial")
+    summary = solve(scene, settings, out)
+    problem, traces, stresses = monolithic_solution(scene, settings)
+    return summary, out, problem, traces, stresses
