@@ -1,6 +1,8 @@
 """The Robin loop against a monolithic solve of the same discrete penalised problem, on
-every kind of scene, and equilibrium (bodies of revolution and friction: the same checks
-in test_monolithic_revolution.py and test_monolithic_friction.py).
+every kind of scene, and equilibrium (bodies of revolution, contrast and rigid
+indenters, friction: the same checks in test_monolithic_revolution.py,
+test_monolithic_contrast.py, test_monolithic_friction.py and
+test_monolithic_partial_slip.py).
 
 freefem/monolithic.edp builds every subdomain with the workers' own includes, couples
 them by the penalty on the same interface points and iterates the contact set to a
@@ -78,32 +80,6 @@ CASES = {
     "coated roller, stretch shell": (_file("roller", model="stretch_shell"), TIGHT),
     "three patches, shell and 2D": (_file("discrete", **{"coating[2].model": "elastic"}), TIGHT),
     "full model, off-centre": (_off_centre_full_model(), TIGHT),
-    # contrast: each side's gamma from its neighbour, the soft side's inactive points
-    # released (ddm/robin_parameters.py: the coated base's matrix changed at the contact
-    # set's changed points by a low-rank update, freefem/robin.idp), iterated (the bond
-    # inside the base's worker, and exchanged) and solved directly; at eps_u 1e-8, as
-    # the stopping test's estimate (the amplification of a contrast of 100 times the
-    # residual) cannot reach 1e-10 in double precision
-    "cylinder 100 E on a coated block, iterated": (
-        _file("cylinder", **{"indenter.E": 100.0}), Settings(eps_u=1e-8, inner_solve="iterate")),
-    "cylinder 100 E on a coated block, iterated, bond exchanged": (
-        _file("cylinder", **{"indenter.E": 100.0}),
-        Settings(eps_u=1e-8, inner_solve="iterate", bonds="exchanged")),
-    "cylinder 100 E on a coated block, direct": (
-        _file("cylinder", **{"indenter.E": 100.0}), Settings(eps_u=1e-8, inner_solve="direct")),
-    "cylinder E/100 on a coated block, iterated": (
-        _file("cylinder", **{"indenter.E": 0.01, "load.force": 2e-4}),
-        Settings(eps_u=1e-8, inner_solve="iterate")),
-    # a rigid indenter: one unknown (freefem/subdomain_rigid.idp), its side's neighbours
-    # at gamma = 1/theta; under a force and under a descent; at eps_u 1e-7, as the
-    # estimate under gamma theta = 1 stays above 1e-8 on some runs (the workers' last
-    # digits differ from run to run)
-    "rigid cylinder on a coated block, force": (
-        _file("cylinder", **{"indenter.rigid": True}), Settings(eps_u=1e-7)),
-    "rigid cylinder on a coated block, descent, iterated": (
-        _file("cylinder", **{"indenter.rigid": True, "load.force": None,
-                             "load.displacement": 0.02}),
-        Settings(eps_u=1e-7, inner_solve="iterate")),
 }
 
 

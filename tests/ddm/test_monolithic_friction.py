@@ -37,8 +37,6 @@ CASES = {
         _sliding("elastic", **{"indenter.rigid": True}), Settings(eps_u=1e-7)),
     # each contact set solved directly from the workers' maps (interface_system.py: a
     # friction entry's data take its contact's tractions)
-    "sliding cylinder on a shell, mu 0.3, direct": (
-        _sliding("shell"), Settings(eps_u=1e-8, inner_solve="direct")),
     "sliding cylinder 3 E on a 2D coating, mu 0.5, direct": (
         _sliding("elastic", 0.5, **{"indenter.E": 3.0}), Settings(eps_u=1e-8, inner_solve="direct")),
 }
