@@ -82,9 +82,13 @@ class StateLayout:
     def friction_slices(self):
         """Where each friction interface's points sit in a contact state after its
         contact points (robin.py: Psi, then the friction states phi)."""
-        slices, start = [], self.contact_points
+        return list(self._friction_slices.items())
+
+    @cached_property
+    def _friction_slices(self):
+        slices, start = {}, self.contact_points
         for i in self.friction_indices:
-            slices.append((i, slice(start, start + self.interfaces[i].size)))
+            slices[i] = slice(start, start + self.interfaces[i].size)
             start += self.interfaces[i].size
         return slices
 
@@ -92,7 +96,7 @@ class StateLayout:
         """Friction interface i's states phi in the contact state psi (0: sticks, +-1:
         slips, its traction +-mu p); a state of the contact points alone: +1, full
         sliding."""
-        where = dict(self.friction_slices())[i]
+        where = self._friction_slices[i]
         if len(psi) <= self.contact_points:
             return np.ones(where.stop - where.start)
         return psi[where]

@@ -89,7 +89,13 @@ EVERYDAY = "paper, shell, active-set loop"     # the one case of the fast subset
 @pytest.fixture(scope="module", params=[
     pytest.param(name, marks=() if name == EVERYDAY else pytest.mark.slow) for name in CASES])
 def case(request, tmp_path_factory):
-    scene, settings = CASES[request.param]
+    return solved_case(CASES[request.param], tmp_path_factory)
+
+
+def solved_case(scene_and_settings, tmp_path_factory):
+    """A case the tests below read: the Robin loop's summary and folder, the problem, and
+    the monolithic solve's traces and stresses (the sibling files' fixtures too)."""
+    scene, settings = scene_and_settings
     out = tmp_path_factory.mktemp("ddm")
     summary = solve(scene, settings, out)
     problem, traces, stresses = monolithic_solution(scene, settings)

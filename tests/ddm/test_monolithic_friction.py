@@ -12,10 +12,12 @@ from dataclasses import replace
 import pytest
 
 from orchestrate.model.scene import Settings
-from orchestrate.run.monolithic import monolithic_solution
-from orchestrate.run.solve import solve
-from tests.ddm.test_monolithic import (_file, test_every_patch_passes_on_what_it_receives,  # noqa: F401
-                                       test_forces_balance, test_robin_loop_equals_monolithic_solve)
+from tests.ddm.test_monolithic import (  # noqa: F401  (the tests, run on this file's cases)
+    _file,
+    solved_case,
+    test_every_patch_passes_on_what_it_receives,
+    test_forces_balance,
+    test_robin_loop_equals_monolithic_solve)
 
 
 def _sliding(model, friction=0.3, **overrides):
@@ -45,8 +47,4 @@ CASES = {
 @pytest.fixture(scope="module", params=[pytest.param(name, marks=pytest.mark.slow)
                                         for name in CASES])
 def case(request, tmp_path_factory):
-    scene, settings = CASES[request.param]
-    out = tmp_path_factory.mktemp("friction")
-    summary = solve(scene, settings, out)
-    problem, traces, stresses = monolithic_solution(scene, settings)
-    return summary, out, problem, traces, stresses
+    return solved_case(CASES[request.param], tmp_path_factory)
