@@ -408,6 +408,11 @@ def _solve(args):
          f"contact force {summary['total_force']:.4e} {units['force']}{descent}, contact "
          "zones " + ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in summary["contact_zones"])
          + f" {units['length']}; results in {args.out}")
+    for number, step in enumerate(summary.get("load_steps") or [], start=1):
+        _say(f"load path, step {number}: force {step['force']:.4e}, tangential force "
+             f"{step['tangential_force']:.4e} {units['force']}: {step['iterations']} "
+             "iterations, stick zones " + ", ".join(
+                 f"[{a:.4g}, {b:.4g}]" for a, b in step["stick_zones"]) + f" {units['length']}")
     if summary.get("stick_zones") is not None:
         _say("partial slip: stick zones " + ", ".join(
             f"[{a:.4g}, {b:.4g}]" for a, b in summary["stick_zones"]) + f" {units['length']}, "

@@ -11,6 +11,12 @@ the body (z >= 0), compression negative:
            mu p(x),                                       c <= |x| <= a
     c / a = sqrt(1 - Q / (mu P))                          partial slip (Cattaneo, 1938;
                                                           Mindlin, 1949), P = pi a p0 / 2
+    q(x) = q*(x) - 2 q'(x)                                Q* then back to Q < Q*
+                                                          (Mindlin & Deresiewicz, 1953)
+
+where q* is Cattaneo's traction under the peak Q* and q' his traction under (Q* - Q) / 2
+with 2 mu p in place of mu p: a zone of reversed slip c' <= |x| <= a, c' / a =
+sqrt(1 - (Q* - Q) / (2 mu P)), where q = -mu p (the superposition of Johnson, 1985, §7.3).
 
 q is the traction the indenter's face applies to the half-plane's surface, along +x (a
 slider moving towards +x drags the surface with it).
@@ -128,3 +134,12 @@ def cattaneo_traction(x, a, p0, mu, tangential_over_limiting):
     slip = mu * p0 * np.sqrt(np.maximum(1.0 - (x / a) ** 2, 0.0))
     stick = mu * p0 * (c / a) * np.sqrt(np.maximum(1.0 - (x / c) ** 2, 0.0)) if c > 0 else 0.0
     return np.where(np.abs(x) < c, slip - stick, slip)
+
+
+def unloading_traction(x, a, p0, mu, peak_over_limiting, tangential_over_limiting):
+    """The traction after Q rose from 0 to Q* = peak_over_limiting * mu P and went back
+    to Q = tangential_over_limiting * mu P (Q* > Q > -Q*; the module's docstring): the
+    reversed slip's zone c' <= |x| <= a where the friction turned, c inside it."""
+    turn = 0.5 * (peak_over_limiting - tangential_over_limiting)
+    return (cattaneo_traction(x, a, p0, mu, peak_over_limiting)
+            - 2.0 * cattaneo_traction(x, a, p0, mu, turn))

@@ -699,7 +699,7 @@ class _ActiveSetLoop(_Loop):
                         return self.result(image, psi, "stagnated",
                                            f"the contact set cycles (update {update + 1} "
                                            "returns to an earlier set)")
-                    tolerance, seen = eps, set()
+                    tolerance, seen = max(eps, 0.1 * tolerance), set()
                 seen.add(new_psi.tobytes())
                 psi, x, update = new_psi, image, update + 1
                 anderson.reset()

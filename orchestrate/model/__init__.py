@@ -6,12 +6,13 @@ mesh, no process."""
 
 from orchestrate.model.estimate import contact_half_width, estimated_errors
 from orchestrate.model.scene import (DEFAULT_ELEMENT_SIZE, MODELS, Base, Coating, Indenter,
-                                     Load, Scene, Settings, scene_from_dict, to_dict)
+                                     Load, LoadStep, Scene, Settings, scene_from_dict,
+                                     to_dict)
 from orchestrate.model.scene_file import (apply_overrides, load_scene, paper_scene,
                                           scene_and_settings, shorthand_values)
 from orchestrate.model.units import Units
 
-__all__ = ["DEFAULT_ELEMENT_SIZE", "MODELS", "Base", "Coating", "Indenter", "Load", "Scene", "Settings", "Units",
-           "apply_overrides", "contact_half_width", "estimated_errors", "load_scene",
+__all__ = ["DEFAULT_ELEMENT_SIZE", "MODELS", "Base", "Coating", "Indenter", "Load", "LoadStep",
+           "Scene", "Settings", "Units", "apply_overrides", "contact_half_width", "estimated_errors", "load_scene",
            "paper_scene", "scene_and_settings", "scene_from_dict", "shorthand_values",
            "to_dict"]

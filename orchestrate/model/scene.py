@@ -51,6 +51,7 @@ SHEAR_FACTOR_RANGE = (1e-3, 1e3)   # k' of the shell
 # friction traction would exceed twice the pressure, no contact of coated parts does
 FRICTION_RANGE = (0.0, 2.0)
 LOAD_PATHS = ("at_once", "pressed_first")   # partial slip: the forces together, or in turn
+                                            # (or a list of the states passed first: Load)
 PROFILES = ("circle", "parabola")
 FACE_MESHES = ("shaped", "flat")
 SHAPES = ("block", "roller")
@@ -301,18 +302,47 @@ class Coating:
 
 
 @dataclass(frozen=True)
+class LoadStep:
+    """A state a load path passes through before the load's own (Load.path): the force
+    and the tangential force per unit width; one left None is the load's own."""
+
+    force: Optional[float] = None
+    tangential_force: Optional[float] = None
+
+
+@dataclass(frozen=True)
 class Load:
     """The stamp's descent from first touch, or the total force per unit width on the
     whole body (both halves of a half model); exactly one of them. Under partial slip
-    also the tangential force per unit width on the indenter, towards +x1, below the
-    friction's limit mu P: the stamp shifts along x1 to carry it."""
+    also the tangential force per unit width on the indenter (towards +x1; negative:
+    towards -x1), below the friction's limit mu P: the stamp shifts along x1 to carry it.
+    ``path``: how a tangential force is reached, "at_once" (the force and the
+    tangential force together: proportional loading), "pressed_first" (the force
+    alone, then the tangential force from that state), or the states it passes
+    through first (LoadStep, or tables {force, tangential_force}), each solved from the
+    one before (a fretting cycle: [{tangential_force = 0}, {tangential_force = Q},
+    {tangential_force = -Q}] before Q)."""
 
     displacement: Optional[float] = None
     force: Optional[float] = None
     tangential_force: Optional[float] = None
-    # under partial slip: "at_once" (the force and the tangential force together) or
-    # "pressed_first" (the force alone, then the tangential force from that state)
-    path: str = "at_once"
+    path: object = "at_once"
+
+    def __post_init__(self):
+        if isinstance(self.path, (list, tuple)):
+            steps = []
+            for number, step in enumerate(self.path, start=1):
+                key = f"load.path[{number}]"
+                if isinstance(step, dict):
+                    allowed = [f.name for f in fields(LoadStep)]
+                    unknown = [name for name in step if name not in allowed]
+                    _require(not unknown, key, f"unknown key {key}.{unknown[0] if unknown else ''} "
+                             f"(allowed: {', '.join(allowed)})")
+                    step = LoadStep(**step)
+                _require(isinstance(step, LoadStep), key,
+                         f"{key} = {step!r} must be a table {{force, tangential_force}}")
+                steps.append(step)
+            object.__setattr__(self, "path", tuple(steps))
 
     def check(self, prefix):
         given = [name for name in ("displacement", "force") if getattr(self, name) is not None]
@@ -322,19 +352,52 @@ class Load:
         _require(_finite(getattr(self, given[0])) and getattr(self, given[0]) >= 0,
                  prefix + given[0],
                  f"{prefix}{given[0]} = {getattr(self, given[0])!r} must be a non-negative number")
-        _choice(prefix + "path", self.path, LOAD_PATHS)
-        _require(self.path == "at_once" or self.tangential_force is not None, prefix + "path",
+        if self.tangential_force is not None:
+            _require(_finite(self.tangential_force), prefix + "tangential_force",
+                     f"{prefix}tangential_force = {self.tangential_force!r} must be a number")
+        if isinstance(self.path, str):
+            _choice(prefix + "path", self.path, LOAD_PATHS)
+        _require(self.path in ("at_once", ()) or self.tangential_force is not None,
+                 prefix + "path",
                  f"{prefix}path = {self.path!r} needs {prefix}tangential_force: a path is "
                  "the order of the force and the tangential force")
-        if self.tangential_force is not None:
-            _require(_finite(self.tangential_force) and self.tangential_force >= 0,
-                     prefix + "tangential_force",
-                     f"{prefix}tangential_force = {self.tangential_force!r} must be a "
-                     "non-negative number")
+        for number, step in enumerate(self.path if isinstance(self.path, tuple) else (),
+                                      start=1):
+            key = f"{prefix}path[{number}]."
+            if step.force is not None:
+                _require(_finite(step.force) and step.force > 0, key + "force",
+                         f"{key}force = {step.force!r} must be a positive number (a "
+                         "tangential force needs the bodies pressed together)")
+            if step.tangential_force is not None:
+                _require(_finite(step.tangential_force), key + "tangential_force",
+                         f"{key}tangential_force = {step.tangential_force!r} must be a number")
 
     @property
     def kind(self):
         return "force" if self.force is not None else "displacement"
+
+    @property
+    def earlier_steps(self):
+        """The (force, tangential force) of every state the path passes through before
+        the load's own, in order (none: "at_once")."""
+        if self.path == "pressed_first":
+            return ((self.force, 0.0),)
+        if isinstance(self.path, str):
+            return ()
+        return tuple((self.force if step.force is None else step.force,
+                      self.tangential_force if step.tangential_force is None
+                      else step.tangential_force) for step in self.path)
+
+    def step_before(self):
+        """The load of the path's step before this one (None: none): its force and
+        tangential force, the path up to it."""
+        steps = self.earlier_steps
+        if not steps:
+            return None
+        force, tangential = steps[-1]
+        earlier = tuple(LoadStep(f, q) for f, q in steps[:-1])
+        return replace(self, force=force, tangential_force=tangential,
+                       path=earlier or "at_once")
 
 
 @dataclass(frozen=True)
@@ -544,10 +607,20 @@ class Scene:
                  "shift is not modelled yet; give the indenter a modulus")
         least = min([self.friction] + [c.friction for c in self.coatings
                                        if c.friction is not None])
-        _require(q < least * self.load.force, "load.tangential_force",
-                 f"load.tangential_force = {q!r} must be below mu P = {least:g} x "
-                 f"{self.load.force!r} (the smallest friction on any contact): at it the "
-                 "indenter slides (sliding = true)")
+        steps = [("load.", self.load.force, q)] + [
+            (f"load.path[{n}].", force, tangential)
+            for n, (force, tangential) in enumerate(self.load.earlier_steps, start=1)]
+        for prefix, force, tangential in steps:
+            _require(abs(tangential) < least * force, prefix + "tangential_force",
+                     f"{prefix}tangential_force = {tangential!r} must be below mu P = "
+                     f"{least:g} x {force!r} in size (the smallest friction on any "
+                     "contact): at it the indenter slides (sliding = true)")
+
+    def step_before(self):
+        """The scene of its load path's step before this one (Load.step_before), each
+        solved from the one before it; None: none."""
+        load = self.load.step_before() if self.partial_slip else None
+        return None if load is None else replace(self, load=load)
 
     @property
     def partial_slip(self):

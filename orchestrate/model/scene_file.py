@@ -95,8 +95,15 @@ def in_units(table, where, units, revolution=False):
     kinds = SCENE_KINDS.get(re.sub(r"\[\d+\]", "", where).rstrip("."), {})
     if revolution and where == "load.":
         kinds = {**kinds, "force": TOTAL_FORCE}
-    return {name: value_in_units(value, kinds[name], units, where + name) if name in kinds
-            else value for name, value in table.items()}
+    values = {name: value_in_units(value, kinds[name], units, where + name) if name in kinds
+              else value for name, value in table.items()}
+    if where == "load." and isinstance(values.get("path"), list):   # its steps' forces
+        values["path"] = [{name: value_in_units(value, kinds[name], units,
+                                                f"load.path[{number}].{name}")
+                           if name in kinds else value for name, value in step.items()}
+                          if isinstance(step, dict) else step
+                          for number, step in enumerate(values["path"], start=1)]
+    return values
 
 
 def _zone_in_units(zone, units):
@@ -242,8 +249,8 @@ def _set(scene, key, value):
         return _copy(scene, coatings=tuple(_copy(c, **{name: value})
                                                 for c in scene.coatings))
     if table == "load" and name in ("displacement", "force"):   # one replaces the other
-        return _copy(scene, load=_copy(Load(tangential_force=scene.load.tangential_force),
-                                       **{name: value}))
+        return _copy(scene, load=_copy(Load(tangential_force=scene.load.tangential_force,
+                                            path=scene.load.path), **{name: value}))
     return _copy(scene, **{table: _copy(getattr(scene, table), **{name: value})})
 
 

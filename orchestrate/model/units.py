@@ -89,10 +89,12 @@ KINDS = {
 TIMER_PREFIXES = ("cpu_", "back_")   # history.csv: seconds per subdomain (cpu_base, ...)
 # Summary entries kept as they are: the scene is written as given (in its units), the
 # settings and the strategy are in b and E by definition (the strategy says its theta and
-# gamma in the scene's units too), the rest are counts by subdomain or texts.
-SUMMARY_AS_IS = ("scene", "settings", "pressed_step", "status", "reason", "dofs", "units", "not_estimated",
-                 "strategy", "estimated_unknowns", "model", "started_from", "inner_solve_used",
-                 "provenance", "warnings", "sweep_point", "inner_solve_fallback")     # warnings: texts and ratios (validity.py)
+# gamma in the scene's units too), a load path's earlier steps are their runs' (already in
+# the scene's units), the rest are counts by subdomain or texts.
+SUMMARY_AS_IS = ("scene", "settings", "load_steps", "status", "reason", "dofs", "units",
+                 "not_estimated", "strategy", "estimated_unknowns", "model", "started_from",
+                 "inner_solve_used", "provenance", "sweep_point", "inner_solve_fallback",
+                 "warnings")     # warnings: texts and ratios (validity.py)
 
 
 # ---- unit names and values with units (pint) -------------------------------------------
@@ -297,13 +299,15 @@ def dimensionless(scene):
     def part(value, table):
         changes = {}
         for name, kind in SCENE_KINDS[table].items():
-            number = getattr(value, name)
+            number = getattr(value, name, None)      # a load path's step: two of load's
             if number is not None:
                 changes[name] = number / scales.of(kind)
         return replace(value, **changes)
-    zone = scene.contact_zone
+    zone, load = scene.contact_zone, part(scene.load, "load")
+    if isinstance(load.path, tuple):
+        load = replace(load, path=tuple(part(step, "load") for step in load.path))
     return replace(scene, indenter=part(scene.indenter, "indenter"),
-                   base=part(scene.base, "base"), load=part(scene.load, "load"),
+                   base=part(scene.base, "base"), load=load,
                    coatings=tuple(part(c, "coating") for c in scene.coatings),
                    contact_zone=None if zone is None else tuple(z / scales.length for z in zone),
                    units=Units()), scales

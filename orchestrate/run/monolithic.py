@@ -29,7 +29,8 @@ def solve_monolithic(problem, workdir, slip_origin=None):
     freefem.run_script("monolithic.edp", ["-problem", problem_file, "-output", output,
                                           *geometry_arguments(problem.scene),
                                           *([] if tangential is None
-                                            else ["-tangential", repr(tangential)])],
+                                            else ["-partialslip", "1",
+                                                  "-tangential", repr(tangential)])],
                        os.path.join(workdir, "monolithic.log"))
     tokens = open(output).read().split()
     traces, k = {}, 0
@@ -78,18 +79,18 @@ def interface_stresses(problem, traces):
     return stresses
 
 
-def monolithic_of(problem, pressed=None):
+def monolithic_of(problem, before=()):
     """The monolithic solution of a discrete problem (a run's plan's, say), in a private
     folder: its traces (solve_monolithic) and interface stresses, in b and E. On a load
-    path (Scene.load.path), ``pressed``: the problem of its first step, solved first,
-    whose friction slips the second's sticking points keep."""
+    path (Scene.load.path), ``before``: the problems of its earlier steps, in order, each
+    solved from the friction slips of the one before (its sticking points keep them)."""
     with tempfile.TemporaryDirectory(prefix="monolithic-") as workdir:
         origin = None
-        if pressed is not None:
-            first_dir = os.path.join(workdir, "pressed")
-            os.makedirs(first_dir)
-            first = solve_monolithic(pressed, first_dir)
-            origin = {i: first[i, 0] + first[i, 1] for i, f in enumerate(pressed.interfaces)
+        for number, step in enumerate(before, start=1):
+            step_dir = os.path.join(workdir, f"step{number}")
+            os.makedirs(step_dir)
+            solved = solve_monolithic(step, step_dir, origin)
+            origin = {i: solved[i, 0] + solved[i, 1] for i, f in enumerate(step.interfaces)
                       if f.kind == "friction"}
         traces = solve_monolithic(problem, workdir, origin)
         traces.update({("origin", i): value for i, value in (origin or {}).items()})
@@ -100,11 +101,11 @@ def monolithic_solution(scene, settings):
     """The monolithic solution of a scene: the problem a run of it solves (its plan's:
     in b and E, every "auto" patch's model chosen), its traces and interface stresses."""
     problem = prepare(scene, settings).problem
-    pressed = None
-    if scene.partial_slip and scene.load.path == "pressed_first":
-        pressed = prepare(replace(scene, load=replace(scene.load, tangential_force=0.0,
-                                                      path="at_once")), settings).problem
-    return (problem, *monolithic_of(problem, pressed))
+    before, step = [], scene.step_before()
+    while step is not None:          # a load path's earlier steps, last first
+        before.insert(0, prepare(step, settings).problem)
+        step = step.step_before()
+    return (problem, *monolithic_of(problem, before))
 
 
 def monolithic_curves(scene, settings):

@@ -98,17 +98,18 @@ def solve_run(scene, settings, out_dir, progress=None, overwrite=False, start_fr
     estimate does not cover), is solved again with the 2D coating before anything is
     written; summary.json's model_choice says so in its entry (fallback_from, _reason)."""
     freefem.executable()             # a missing FreeFEM is reported before any work
-    fallbacks, pressed = [], None
-    path = scene.partial_slip and scene.load.path == "pressed_first"
-    with (Session() if path and session is None else contextlib.nullcontext(session)) as session:
-        if path:                     # the force alone first, its workers kept for the pull
-            pressed = _pressed_step(scene, settings, progress, start_from, session)
-            start_from, start_name = pressed, "the pressed step (load.path)"
+    fallbacks, before = [], None
+    step_before = scene.step_before()
+    with (Session(map_kept=False) if step_before is not None and session is None
+          else contextlib.nullcontext(session)) as session:
+        if step_before is not None:  # a load path: the steps before, workers kept between
+            before = _step_before(step_before, settings, progress, start_from, session)
+            start_from, start_name = before, "the load path's step before (load.path)"
         while True:
             try:
                 return _solve_once(scene, settings, out_dir, progress, overwrite, start_from,
                                    session, sweep_point, start_name, strict, keep, fallbacks,
-                                   pressed)
+                                   before)
             except _ModelFallback as fallback:
                 fallbacks.append(fallback.record)
                 scene = scene.with_models(["elastic" if n == fallback.record["patch"]
@@ -116,19 +117,36 @@ def solve_run(scene, settings, out_dir, progress=None, overwrite=False, start_fr
                                            for n, c in enumerate(scene.coatings, start=1)])
 
 
-def _pressed_step(scene, settings, progress, start_from, session):
-    """A load path's first step (Scene.load.path = "pressed_first"): the scene under its
-    force alone, frictional (its points stick where they touch, and slip where pressing
-    alone makes them), solved in a folder of its own; its summary and tables, which
-    start the pull, whose sticking points stay where they stood (robin.robin_laws'
-    slip_origin)."""
-    pressed = replace(scene, load=replace(scene.load, tangential_force=0.0, path="at_once"))
+def _step_before(scene, settings, progress, start_from, session):
+    """A load path's step before the scene's own (Scene.step_before: solved, in a folder
+    of its own, from the steps before it in turn): its summary and tables, which start
+    the next step, whose sticking points stay where they stood at its end (robin.
+    robin_laws' slip_origin). RunFailed where it does not converge, saying which step."""
     with WorkFolder() as scratch:
-        files = solve_run(pressed, settings, Path(scratch) / "pressed", progress=progress,
-                          start_from=start_from, session=session, keep=True)
+        try:
+            files = solve_run(scene, settings, Path(scratch) / "step", progress=progress,
+                              start_from=start_from, session=session, keep=True)
+        except RunFailed as failed:
+            number = len(scene.load.earlier_steps) + 1
+            raise RunFailed(dict(failed.summary, reason=(
+                f"the load path's step {number} (load.path: force {scene.load.force:g}, "
+                f"tangential force {scene.load.tangential_force:g}): "
+                f"{failed.summary['reason']}"))) from None
     tables = {name: pd.DataFrame(files.tables.get(f"{name}.csv", {}))
               for name in ("contact", "interface", "traces")}
     return SimpleNamespace(summary=files.summary, **tables)
+
+
+def _load_steps(before):
+    """summary.json's load_steps: every earlier step of a load path (``before``: the
+    last of them, solved), in the scene's units."""
+    if before is None:
+        return None
+    summary = before.summary
+    return (summary.get("load_steps") or []) + [dict(
+        {key: summary["scene"]["load"][key] for key in ("force", "tangential_force")},
+        **{key: summary[key] for key in ("iterations", "descent", "stamp_shift",
+                                         "stick_zones", "wall_time_s")})]
 
 
 class _ModelFallback(Exception):
@@ -173,9 +191,9 @@ def _with_fallbacks(report, fallbacks):
 
 
 def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, session,
-                sweep_point, start_name, strict, keep, fallbacks, pressed=None):
+                sweep_point, start_name, strict, keep, fallbacks, before=None):
     """solve_run's run of one choice of models (``fallbacks``: the patches solved again
-    with the 2D coating so far; ``pressed``: a load path's first step, whose state
+    with the 2D coating so far; ``before``: a load path's step before, whose state
     ``start_from`` is): _ModelFallback for a patch to solve again, before its folder is
     written."""
     plan = prepare(scene, settings)
@@ -186,7 +204,7 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
     start = (start_state(start_from, StateLayout(problem.interfaces))
              if start_from is not None else None)         # checked before any work
     slip_origin = None
-    if pressed is not None:          # the slips the pressed step left (robin_laws)
+    if before is not None:           # the slips the step before left (robin_laws)
         layout = StateLayout(problem.interfaces)
         slip_origin = np.concatenate([np.zeros(0)] + [
             layout.get(start, "u", i, 0) + layout.get(start, "u", i, 1)
@@ -255,10 +273,8 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
             "reason": loop.reason,
             "converged": loop.converged,
             "stamp_shift": stamp_shift if scene.partial_slip else None,
-            # a load path's first step, in the scene's units
-            "pressed_step": None if pressed is None else {
-                key: pressed.summary[key] for key in ("iterations", "descent", "stick_zones",
-                                                      "wall_time_s")},
+            # a load path's earlier steps, in the scene's units
+            "load_steps": _load_steps(before),
             "iterations": loop.iterations,
             "final_relative_change": loop.history[-1]["relative_change"],
             "error_estimate": loop.error_estimate,
@@ -299,7 +315,7 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
         summary = scaled_summary(summary, scales)
         summary["wall_time_s"] = (time.perf_counter() - started    # with the runs left
                                   + sum(fallback["seconds"] for fallback in fallbacks)
-                                  + (pressed.summary["wall_time_s"] if pressed else 0.0))
+                                  + (before.summary["wall_time_s"] if before else 0.0))
         run_files.write_summary(summary, scene.units)
         checkpoint("committing")
         folder.commit()

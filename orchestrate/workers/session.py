@@ -106,9 +106,13 @@ class Session:
     with the answer it has alone (requests of two runs never interleave on a worker);
     a thread does not take the workers another thread started (they die with it).
     ``with Session() as session:`` stops its workers at the end of the block; a Session
-    never closed stops them when it is garbage-collected, or when the interpreter exits."""
+    never closed stops them when it is garbage-collected, or when the interpreter exits.
+    ``map_kept``: whether a worker serving its second scene gives its Robin map (orchestrate/
+    workers/subdomains.py), which pays over a sweep; a load path's own session of two or
+    three steps does not ask it (a coated base's map cost 8 s where its step took 3 s)."""
 
-    def __init__(self):
+    def __init__(self, map_kept=True):
+        self.map_kept = map_kept
         self._workers = _Workers()
         self.lock = threading.RLock()
         self._finalizer = weakref.finalize(self, self._workers.close)

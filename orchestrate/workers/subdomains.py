@@ -126,7 +126,7 @@ def load_arguments(problem):
     scene = problem.scene
     if scene.load.force is not None:
         tangential = ([] if scene.load.tangential_force is None
-                      else ["-tangential", scene.load.tangential_force])
+                      else ["-partialslip", 1, "-tangential", scene.load.tangential_force])
         return ["-force", scene.half_force, *tangential]
     return ["-descent", scene.load.displacement]
 
@@ -316,7 +316,7 @@ class Subdomains:
         return self.direct and all(self._to_map(entry) for entry in self.entries.values())
 
     def _to_map(self, entry):
-        return self.map_new or entry.scenes >= 2
+        return self.map_new or (entry.scenes >= 2 and self.session.map_kept)
 
     def _ask_maps(self, requests):
         """The maps of the workers that serve their second scene (every worker's, with

@@ -1,12 +1,12 @@
 """The Robin loop against the monolithic solve under partial slip (the stamp's shift, the
-stick and slip states) and on a load path (pressed, then pulled): the same checks as
+stick and slip states) and on a load path (pressed, pulled, turned back): the same checks as
 test_monolithic.py's (a file of its own, so that the test processes share the work)."""
 
 from dataclasses import replace
 
 import pytest
 
-from orchestrate.model.scene import Settings
+from orchestrate.model.scene import LoadStep, Settings
 from tests.ddm.test_monolithic import (  # noqa: F401  (the tests, run on this file's cases)
     _file,
     solved_case,
@@ -25,8 +25,12 @@ def _partial(model, share, friction=0.5, **overrides):
     return replace(scene, symmetric=False, friction=friction, coatings=coatings, load=load)
 
 
-def _pressed_first(scene):
-    return replace(scene, load=replace(scene.load, path="pressed_first"))
+def _turned(scene, peak):
+    """A load path: pressed alone, pulled to ``peak`` times the load's tangential force,
+    then brought to the load's own."""
+    load = scene.load
+    return replace(scene, load=replace(load, path=(
+        LoadStep(tangential_force=0.0), LoadStep(tangential_force=peak * load.tangential_force))))
 
 
 CASES = {
@@ -36,10 +40,11 @@ CASES = {
     # 3 E: the load path's below, whose pull is this at another origin)
     "partial slip, bare block, Q = mu P / 2": (_partial(None, 0.5), Settings(eps_u=1e-8)),
     "partial slip, shell, Q = 0.3 mu P": (_partial("shell", 0.3), Settings(eps_u=1e-8)),
-    # a load path: pressed alone first (its sticking points keep where they stood after
-    # it), then pulled; both steps in the monolithic solve too
-    "pressed, then pulled: 3 E on a 2D coating, Q = mu P / 2": (
-        _pressed_first(_partial("elastic", 0.5, **{"indenter.E": 3.0})), Settings(eps_u=1e-8)),
+    # a load path: pressed alone first, pulled to Q*, then turned back past zero (each
+    # step's sticking points keep where they stood at the end of the step before, the
+    # slip reverses at the ends); every step in the monolithic solve too
+    "pressed, pulled to mu P / 2, turned to -mu P / 4: 3 E on a 2D coating": (
+        _turned(_partial("elastic", -0.25, **{"indenter.E": 3.0}), -2.0), Settings(eps_u=1e-8)),
 }
 
 

@@ -4,6 +4,7 @@ work, naming the file, the key and the allowed range; flags override the file.""
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from orchestrate.model.scene import ParameterError
@@ -130,6 +131,24 @@ BAD = [
         "force = 0.02", "force = 0.02\ntangential_force = 0.004"),
         "height = 8.0\n[base]", "height = 8.0\nrigid = true\n[base]"),
      ["indenter.rigid = true", "shift is not modelled"]),
+    ("a load path's step beyond the friction's limit", _edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+        "force = 0.02", "force = 0.02\ntangential_force = 0.004\n"
+        "path = [{tangential_force = 0}, {tangential_force = -0.012}]"),
+     ["load.path[2].tangential_force = -0.012 must be below mu P = 0.5 x 0.02 in size"]),
+    ("a load path's step unpressed", _edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+        "force = 0.02", "force = 0.02\ntangential_force = 0.004\n"
+        "path = [{force = 0, tangential_force = 0}]"),
+     ["load.path[1].force = 0 must be a positive number"]),
+    ("a load path's unknown key", _edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+        "force = 0.02", "force = 0.02\ntangential_force = 0.004\npath = [{shift = 0.1}]"),
+     ["unknown key load.path[1].shift", "allowed: force, tangential_force"]),
+    ("a load path of numbers", _edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+        "force = 0.02", "force = 0.02\ntangential_force = 0.004\npath = [0.0, 0.004]"),
+     ["load.path[1] = 0.0 must be a table {force, tangential_force}"]),
     ("a friction in words", _edit(BASE, "symmetric = true",
                                   "symmetric = false\nsliding = true\nfriction = \"high\""),
      ["friction = 'high'", "[0, 2]"]),
@@ -225,3 +244,34 @@ def test_a_tangential_force_is_set_beside_the_force():
     assert (pulled.load.force, pulled.load.tangential_force) == (0.02, 0.004)
     pressed = apply_overrides(scene, {"load.force": 0.03})
     assert (pressed.load.force, pressed.load.tangential_force) == (0.03, 0.005)
+
+
+def test_a_load_path_s_steps_take_units_and_the_load_s_own_values(tmp_path):
+    """A load path's steps (load.path) in the file's units, a key a step leaves out
+    holding the load's own; each step's scene the path up to it; a force set by a flag
+    keeps the path."""
+    from orchestrate.model.scene_file import apply_overrides
+    from orchestrate.model.units import dimensionless
+    scene, _ = load_scene(SCENES_DIR / "cylinder_mm.toml")
+    text = (SCENES_DIR / "cylinder_mm.toml").read_text()
+    force = scene.load.force
+    assert "[load]" in text and "symmetric = true" in text
+    path = tmp_path / "fretting.toml"
+    path.write_text(text.replace("symmetric = true", "symmetric = false\nfriction = 0.5", 1)
+                    .replace("[load]", "[load]\ntangential_force = \"-0.1 kN/m\"\n"
+                             "path = [{tangential_force = 0}, "
+                             "{force = \"%g N/mm\", tangential_force = \"200 N/m\"}]"
+                             % (0.9 * force), 1))
+    fretting, _ = load_scene(path)
+    assert fretting.load.tangential_force == pytest.approx(-0.1)      # kN/m = N/mm
+    np.testing.assert_allclose(fretting.load.earlier_steps, [(force, 0.0), (0.9 * force, 0.2)],
+                               rtol=1e-12)
+    peak = fretting.step_before()
+    assert (peak.load.force, peak.load.tangential_force) == pytest.approx((0.9 * force, 0.2))
+    pressed = peak.step_before()
+    assert (pressed.load.tangential_force, pressed.load.path) == (0.0, "at_once")
+    assert pressed.step_before() is None
+    scaled, scales = dimensionless(fretting)
+    from orchestrate.model.units import FORCE
+    assert scaled.load.earlier_steps[1][1] == pytest.approx(0.2 / scales.of(FORCE))
+    assert apply_overrides(fretting, {"load.force": 2 * force}).load.path == fretting.load.path

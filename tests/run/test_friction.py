@@ -143,7 +143,7 @@ def test_pressing_then_pulling_is_pulling_at_once_between_bodies_of_one_material
         np.testing.assert_allclose(path.contact[column], once.contact[column], rtol=0,
                                    atol=1e-4 * scale)
     assert path.summary["stamp_shift"] == pytest.approx(once.summary["stamp_shift"], rel=1e-4)
-    assert path.summary["pressed_step"]["iterations"] > 0
+    assert path.summary["load_steps"][0]["iterations"] > 0
     # unlike bodies: warned at once, not on the path (the loop against the monolithic
     # solve's two steps there: test_monolithic_partial_slip.py)
     from orchestrate.run.plan import prepare

@@ -11,7 +11,7 @@ from scipy import integrate
 
 from studies.line_contact_stresses import (cattaneo_traction, flamant_stresses, hertz_line,
                                            largest, principal_shear, sliding_stresses,
-                                           stick_half_width, von_mises)
+                                           stick_half_width, unloading_traction, von_mises)
 
 POINTS = [(0.0, 0.5), (0.4, 0.3), (-0.7, 0.9), (1.5, 0.2), (-1.3, 0.6), (0.95, 0.05),
           (0.2, 1.7)]
@@ -71,3 +71,28 @@ def test_the_partial_slip_traction_carries_the_tangential_force():
         assert float(cattaneo_traction(c * (1 - eps), a, p0, mu, share)) == pytest.approx(
             float(cattaneo_traction(c, a, p0, mu, share)), abs=2 * mu * p0 * math.sqrt(2 * eps))
     assert stick_half_width(a, 1.0) == 0.0
+
+
+def test_the_unloading_traction_carries_its_force_and_reverses_at_the_edges():
+    """Mindlin and Deresiewicz: after Q* and back to Q the traction integrates to Q, is
+    -mu p in the reversed slip zone c' <= |x| <= a, stays q* (the peak's traction)
+    inside Cattaneo's stick zone of Q* shifted by the uniform stick term, and is
+    Cattaneo's at Q = Q* (no turn)."""
+    F, R, modulus, mu = 0.02, 40.0, 0.55, 0.5
+    a, p0 = hertz_line(F, R, modulus)
+    for peak, share in ((0.75, 0.25), (0.5, -0.5), (0.6, 0.0)):
+        turned = stick_half_width(a, 0.5 * (peak - share))
+        kinks = sorted({turned, stick_half_width(a, peak)})
+        force = integrate.quad(lambda s: float(unloading_traction(s, a, p0, mu, peak, share)),
+                               -a, a, points=[-k for k in kinks] + kinks,
+                               limit=200, epsabs=1e-13 * mu * F, epsrel=1e-12)[0]
+        assert force == pytest.approx(share * mu * F, rel=1e-9, abs=1e-12 * mu * F)
+        reversed_slip = np.linspace(turned, a, 7)[1:-1]
+        assert np.allclose(unloading_traction(reversed_slip, a, p0, mu, peak, share),
+                           -mu * p0 * np.sqrt(1 - (reversed_slip / a) ** 2), rtol=1e-13)
+    x = np.linspace(-a, a, 41)
+    assert np.allclose(unloading_traction(x, a, p0, mu, 0.5, 0.5),
+                       cattaneo_traction(x, a, p0, mu, 0.5), rtol=0, atol=1e-15 * p0)
+    # fully reversed (Q = -Q*): the mirror image of Cattaneo's
+    assert np.allclose(unloading_traction(x, a, p0, mu, 0.5, -0.5),
+                       -cattaneo_traction(x, a, p0, mu, 0.5), rtol=0, atol=1e-14 * p0)
