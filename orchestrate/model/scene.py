@@ -304,28 +304,36 @@ class Coating:
 @dataclass(frozen=True)
 class LoadStep:
     """A state a load path passes through before the load's own (Load.path): the force
-    and the tangential force per unit width; one left None is the load's own."""
+    per unit width and the stamp's tangential load, of the load's own kind (a tangential
+    force, or a tangential displacement); one left None is the load's own."""
 
     force: Optional[float] = None
     tangential_force: Optional[float] = None
+    tangential_displacement: Optional[float] = None
+
+
+TANGENTIAL_LOADS = ("tangential_force", "tangential_displacement")
 
 
 @dataclass(frozen=True)
 class Load:
     """The stamp's descent from first touch, or the total force per unit width on the
     whole body (both halves of a half model); exactly one of them. Under partial slip
-    also the tangential force per unit width on the indenter (towards +x1; negative:
-    towards -x1), below the friction's limit mu P: the stamp shifts along x1 to carry it.
-    ``path``: how a tangential force is reached, "at_once" (the force and the
-    tangential force together: proportional loading), "pressed_first" (the force
-    alone, then the tangential force from that state), or the states it passes
-    through first (LoadStep, or tables {force, tangential_force}), each solved from the
-    one before (a fretting cycle: [{tangential_force = 0}, {tangential_force = Q},
-    {tangential_force = -Q}] before Q)."""
+    also one of: the tangential force per unit width on the indenter (towards +x1;
+    negative: towards -x1), below the friction's limit mu P in size, the stamp shifting
+    along x1 to carry it; or the stamp's tangential displacement (its shift along x1,
+    given; the tangential force its answer, mu P once the indenter slides).
+    ``path``: how the tangential load is reached, "at_once" (with the force:
+    proportional loading), "pressed_first" (the force alone, the tangential load zero,
+    then the tangential load from that state), or the states it passes through first
+    (LoadStep, or tables {force, tangential_force} or {force, tangential_displacement}),
+    each solved from the one before (a fretting cycle: [{tangential_force = 0},
+    {tangential_force = Q}, {tangential_force = -Q}] before Q)."""
 
     displacement: Optional[float] = None
     force: Optional[float] = None
     tangential_force: Optional[float] = None
+    tangential_displacement: Optional[float] = None
     path: object = "at_once"
 
     def __post_init__(self):
@@ -340,7 +348,7 @@ class Load:
                              f"(allowed: {', '.join(allowed)})")
                     step = LoadStep(**step)
                 _require(isinstance(step, LoadStep), key,
-                         f"{key} = {step!r} must be a table {{force, tangential_force}}")
+                         f"{key} = {step!r} must be a table {{force, {self.tangential_kind}}}")
                 steps.append(step)
             object.__setattr__(self, "path", tuple(steps))
 
@@ -352,52 +360,77 @@ class Load:
         _require(_finite(getattr(self, given[0])) and getattr(self, given[0]) >= 0,
                  prefix + given[0],
                  f"{prefix}{given[0]} = {getattr(self, given[0])!r} must be a non-negative number")
-        if self.tangential_force is not None:
-            _require(_finite(self.tangential_force), prefix + "tangential_force",
-                     f"{prefix}tangential_force = {self.tangential_force!r} must be a number")
+        tangential = [name for name in TANGENTIAL_LOADS if getattr(self, name) is not None]
+        _require(len(tangential) <= 1, prefix + "tangential_displacement",
+                 f"{prefix.rstrip('.')} must give at most one of tangential_force or "
+                 "tangential_displacement (the stamp's force along x1, or its shift)")
+        for name in tangential:
+            _require(_finite(getattr(self, name)), prefix + name,
+                     f"{prefix}{name} = {getattr(self, name)!r} must be a number")
         if isinstance(self.path, str):
             _choice(prefix + "path", self.path, LOAD_PATHS)
-        _require(self.path in ("at_once", ()) or self.tangential_force is not None,
-                 prefix + "path",
-                 f"{prefix}path = {self.path!r} needs {prefix}tangential_force: a path is "
-                 "the order of the force and the tangential force")
+        if self.path in ("at_once", ()):
+            return
+        _require(tangential, prefix + "path",
+                 f"{prefix}path = {self.path!r} needs {prefix}tangential_force or "
+                 f"{prefix}tangential_displacement: a path is the order of the force and "
+                 "the tangential load")
+        _require(self.force is not None, prefix + "path",
+                 f"{prefix}path = {self.path!r} needs {prefix}force: a path's steps are "
+                 "forces")
         for number, step in enumerate(self.path if isinstance(self.path, tuple) else (),
                                       start=1):
             key = f"{prefix}path[{number}]."
             if step.force is not None:
                 _require(_finite(step.force) and step.force > 0, key + "force",
                          f"{key}force = {step.force!r} must be a positive number (a "
-                         "tangential force needs the bodies pressed together)")
-            if step.tangential_force is not None:
-                _require(_finite(step.tangential_force), key + "tangential_force",
-                         f"{key}tangential_force = {step.tangential_force!r} must be a number")
+                         "tangential load needs the bodies pressed together)")
+            other = next(n for n in TANGENTIAL_LOADS if n != self.tangential_kind)
+            _require(getattr(step, other) is None, key + other,
+                     f"{key}{other} with {prefix}{self.tangential_kind}: a path's steps give "
+                     "the load's own kind of tangential load")
+            value = getattr(step, self.tangential_kind)
+            if value is not None:
+                _require(_finite(value), key + self.tangential_kind,
+                         f"{key}{self.tangential_kind} = {value!r} must be a number")
 
     @property
     def kind(self):
         return "force" if self.force is not None else "displacement"
 
     @property
+    def tangential_kind(self):
+        """"tangential_force", "tangential_displacement", or None (no tangential load)."""
+        return ("tangential_displacement" if self.tangential_displacement is not None
+                else "tangential_force" if self.tangential_force is not None else None)
+
+    @property
+    def tangential(self):
+        """The tangential load's value, of its kind (None: none)."""
+        return None if self.tangential_kind is None else getattr(self, self.tangential_kind)
+
+    @property
     def earlier_steps(self):
-        """The (force, tangential force) of every state the path passes through before
-        the load's own, in order (none: "at_once")."""
+        """The (force, tangential load of the load's kind) of every state the path passes
+        through before the load's own, in order (none: "at_once")."""
         if self.path == "pressed_first":
             return ((self.force, 0.0),)
         if isinstance(self.path, str):
             return ()
+        kind = self.tangential_kind
         return tuple((self.force if step.force is None else step.force,
-                      self.tangential_force if step.tangential_force is None
-                      else step.tangential_force) for step in self.path)
+                      self.tangential if getattr(step, kind) is None else getattr(step, kind))
+                     for step in self.path)
 
     def step_before(self):
         """The load of the path's step before this one (None: none): its force and
-        tangential force, the path up to it."""
-        steps = self.earlier_steps
+        tangential load, the path up to it."""
+        steps, kind = self.earlier_steps, self.tangential_kind
         if not steps:
             return None
         force, tangential = steps[-1]
-        earlier = tuple(LoadStep(f, q) for f, q in steps[:-1])
-        return replace(self, force=force, tangential_force=tangential,
-                       path=earlier or "at_once")
+        earlier = tuple(LoadStep(**{"force": f, kind: q}) for f, q in steps[:-1])
+        return replace(self, force=force, **{kind: tangential}, path=earlier or "at_once")
 
 
 @dataclass(frozen=True)
@@ -582,29 +615,33 @@ class Scene:
             key = f"coating[{number}].friction"
             _require(not coating.friction or moving, "sliding",
                      f"{key} = {coating.friction!r} needs sliding = true (full sliding) or "
-                     "load.tangential_force (partial slip)")
+                     "load.tangential_force or load.tangential_displacement (partial slip)")
         _require(self.friction == 0 or moving, "sliding",
                  f"friction = {self.friction!r} needs sliding = true (full sliding: the "
                  "friction traction mu p wherever the bodies touch) or load.tangential_force "
-                 "(partial slip under a tangential force below mu P)")
+                 "or load.tangential_displacement (partial slip under a tangential force "
+                 "below mu P, or a given shift)")
         _require(not self.sliding or not self.symmetric, "symmetric",
                  "sliding = true needs symmetric = false: the friction traction breaks the "
                  "mirror symmetry of a half model (model the whole scene)")
         if not self.partial_slip:
             return
-        q = self.load.tangential_force
-        _require(not self.sliding, "load.tangential_force",
-                 f"load.tangential_force = {q!r} with sliding = true: a sliding indenter "
-                 "carries mu P; leave one of them out")
+        kind, q = f"load.{self.load.tangential_kind}", self.load.tangential
+        _require(not self.sliding, kind,
+                 f"{kind} = {q!r} with sliding = true: a sliding indenter carries mu P; "
+                 "leave one of them out")
         _require(not self.symmetric, "symmetric",
-                 "load.tangential_force needs symmetric = false: the tangential force "
-                 "breaks the mirror symmetry of a half model (model the whole scene)")
-        _require(self.load.force is not None, "load.tangential_force",
-                 f"load.tangential_force = {q!r} needs load.force: the stamp carries both "
-                 "forces (a descent with a tangential force is not solved)")
+                 f"{kind} needs symmetric = false: the tangential load breaks the mirror "
+                 "symmetry of a half model (model the whole scene)")
         _require(not self.indenter.rigid, "indenter.rigid",
-                 "load.tangential_force with indenter.rigid = true: a rigid indenter's "
-                 "shift is not modelled yet; give the indenter a modulus")
+                 f"{kind} with indenter.rigid = true: a rigid indenter's shift is not "
+                 "modelled yet; give the indenter a modulus")
+        if self.load.tangential_kind == "tangential_displacement":
+            return                   # any shift: beyond the stick limit the indenter slides
+        _require(self.load.force is not None, kind,
+                 f"{kind} = {q!r} needs load.force: the stamp carries both forces (a "
+                 "descent with a tangential force is not solved; give "
+                 "load.tangential_displacement)")
         least = min([self.friction] + [c.friction for c in self.coatings
                                        if c.friction is not None])
         steps = [("load.", self.load.force, q)] + [
@@ -614,7 +651,8 @@ class Scene:
             _require(abs(tangential) < least * force, prefix + "tangential_force",
                      f"{prefix}tangential_force = {tangential!r} must be below mu P = "
                      f"{least:g} x {force!r} in size (the smallest friction on any "
-                     "contact): at it the indenter slides (sliding = true)")
+                     "contact): at it the indenter slides (sliding = true, or "
+                     "load.tangential_displacement)")
 
     def step_before(self):
         """The scene of its load path's step before this one (Load.step_before), each
@@ -624,8 +662,9 @@ class Scene:
 
     @property
     def partial_slip(self):
-        """Whether the stamp carries a tangential force below the friction's limit."""
-        return self.load.tangential_force is not None
+        """Whether the stamp carries a tangential load (a force below the friction's
+        limit, or a shift)."""
+        return self.load.tangential_kind is not None
 
     @property
     def frictional(self):

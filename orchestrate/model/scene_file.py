@@ -31,7 +31,8 @@ import re
 import tomllib
 
 from orchestrate.paths import SCENES_DIR
-from orchestrate.model.scene import (Base, Coating, Indenter, Load, ParameterError, Scene, Settings)
+from orchestrate.model.scene import (TANGENTIAL_LOADS, Base, Coating, Indenter, Load,
+                                     ParameterError, Scene, Settings)
 from orchestrate.model.units import (INVERSE_LENGTH, LENGTH, SCENE_KINDS, TOTAL_FORCE,
                                      units_from_table, value_in_units)
 
@@ -249,8 +250,11 @@ def _set(scene, key, value):
         return _copy(scene, coatings=tuple(_copy(c, **{name: value})
                                                 for c in scene.coatings))
     if table == "load" and name in ("displacement", "force"):   # one replaces the other
-        return _copy(scene, load=_copy(Load(tangential_force=scene.load.tangential_force,
-                                            path=scene.load.path), **{name: value}))
+        return _copy(scene, load=_copy(scene.load, **{"displacement": None, "force": None,
+                                                      name: value}))
+    if table == "load" and name in TANGENTIAL_LOADS:            # so do these two
+        return _copy(scene, load=_copy(scene.load, **{**dict.fromkeys(TANGENTIAL_LOADS),
+                                                      name: value}))
     return _copy(scene, **{table: _copy(getattr(scene, table), **{name: value})})
 
 

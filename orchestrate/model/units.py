@@ -45,7 +45,8 @@ SCENE_KINDS = {
                  "E": STRESS},
     "base": {"width": LENGTH, "height": LENGTH, "radius": LENGTH, "bore": LENGTH, "E": STRESS},
     "coating": {"start": LENGTH, "end": LENGTH, "thickness": LENGTH, "E": STRESS},
-    "load": {"displacement": LENGTH, "force": FORCE, "tangential_force": FORCE},
+    "load": {"displacement": LENGTH, "force": FORCE, "tangential_force": FORCE,
+             "tangential_displacement": LENGTH},
 }
 
 # Every number a run writes, by its name (a CSV column, a VTU field, a summary key).
@@ -68,7 +69,8 @@ KINDS = {
     # forces per unit width (the shell's forces too), moments per unit width
     "T11": FORCE, "T13": FORCE, "T33": FORCE, "force": FORCE, "contact_force": FORCE,
     "tangential_force": FORCE, "stamp_shift": LENGTH,
-    "interface_force": FORCE, "stamp_reaction": FORCE, "base_reaction": FORCE,
+    "interface_force": FORCE, "stamp_reaction": FORCE, "stamp_tangential_force": FORCE,
+    "base_reaction": FORCE,
     "total_force": FORCE, "M11": MOMENT,
     # a shell of revolution's forces and moments per unit length of a circle
     "N_r": LINE_FORCE, "N_theta": LINE_FORCE, "Q": LINE_FORCE, "N_z": LINE_FORCE,

@@ -14,7 +14,8 @@ import numpy as np
 from orchestrate.workers import freefem
 from orchestrate.ddm.contact import bond_traction, contact_stress, limits_on_axis
 from orchestrate.workers.problem_file import write_problem
-from orchestrate.workers.subdomains import geometry_arguments, write_inputs
+from orchestrate.workers.subdomains import (geometry_arguments, tangential_arguments,
+                                            write_inputs)
 from orchestrate.run.plan import prepare
 
 
@@ -25,12 +26,9 @@ def solve_monolithic(problem, workdir, slip_origin=None):
     problem_file = os.path.join(workdir, "problem.txt")
     output = os.path.join(workdir, "monolithic_traces.txt")
     write_problem(problem, files, problem_file, slip_origin=slip_origin)
-    tangential = problem.scene.load.tangential_force
     freefem.run_script("monolithic.edp", ["-problem", problem_file, "-output", output,
                                           *geometry_arguments(problem.scene),
-                                          *([] if tangential is None
-                                            else ["-partialslip", "1",
-                                                  "-tangential", repr(tangential)])],
+                                          *tangential_arguments(problem.scene.load)],
                        os.path.join(workdir, "monolithic.log"))
     tokens = open(output).read().split()
     traces, k = {}, 0

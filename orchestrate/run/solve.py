@@ -130,7 +130,7 @@ def _step_before(scene, settings, progress, start_from, session):
             number = len(scene.load.earlier_steps) + 1
             raise RunFailed(dict(failed.summary, reason=(
                 f"the load path's step {number} (load.path: force {scene.load.force:g}, "
-                f"tangential force {scene.load.tangential_force:g}): "
+                f"{scene.load.tangential_kind.replace('_', ' ')} {scene.load.tangential:g}): "
                 f"{failed.summary['reason']}"))) from None
     tables = {name: pd.DataFrame(files.tables.get(f"{name}.csv", {}))
               for name in ("contact", "interface", "traces")}
@@ -144,9 +144,9 @@ def _load_steps(before):
         return None
     summary = before.summary
     return (summary.get("load_steps") or []) + [dict(
-        {key: summary["scene"]["load"][key] for key in ("force", "tangential_force")},
-        **{key: summary[key] for key in ("iterations", "descent", "stamp_shift",
-                                         "stick_zones", "wall_time_s")})]
+        force=summary["scene"]["load"]["force"],
+        **{key: summary[key] for key in ("tangential_force", "stamp_shift", "iterations",
+                                         "descent", "stick_zones", "wall_time_s")})]
 
 
 class _ModelFallback(Exception):
@@ -456,6 +456,11 @@ def _write_results(problem, loop, outputs, run_files):
         "tangential_force": 0.0 if problem.scene.symmetric else tangential_force,
         "interface_force": interface_force,
         "stamp_reaction": -outputs["indenter"].reactions[LABELS["Stamp"]][1],
+        # the x1 force the stamp carries (a given shift's answer; the halves of a half
+        # model cancel; a rigid indenter carries the contact's, its only load)
+        "stamp_tangential_force": (0.0 if problem.scene.symmetric else tangential_force
+                                   if problem.scene.indenter.rigid else
+                                   outputs["indenter"].reactions[LABELS["Stamp"]][0]),
         "base_reaction": outputs["base"].reactions[LABELS["Clamped"]][1],
         "peak_contact_stress": float(np.min(sigma_contact)),
         "peak_interface_stress": float(np.min(np.concatenate(bonds))) if bonds else None,

@@ -141,7 +141,7 @@ def scene_warnings(scene, given, settings, say, a):
     units (the estimate's quantities are ratios: any consistent units do), and its a
     priori contact half-width ``a`` in those units."""
     warnings = []
-    if (scene.partial_slip and scene.load.tangential_force and scene.load.path == "at_once"
+    if (scene.partial_slip and scene.load.tangential and scene.load.path == "at_once"
             and _unlike_bodies(scene)):
         warnings.append(_warning(
             "partial_slip_path", "load.tangential_force between unlike bodies (a coating, "

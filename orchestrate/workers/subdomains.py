@@ -122,13 +122,21 @@ def shell_columns(subdomain):
 
 def load_arguments(problem):
     """The stamp's load for the indenter's worker: its descent, or its force, and under
-    partial slip its tangential force."""
+    partial slip its tangential load."""
     scene = problem.scene
     if scene.load.force is not None:
-        tangential = ([] if scene.load.tangential_force is None
-                      else ["-partialslip", 1, "-tangential", scene.load.tangential_force])
-        return ["-force", scene.half_force, *tangential]
-    return ["-descent", scene.load.displacement]
+        return ["-force", scene.half_force, *tangential_arguments(scene.load)]
+    return ["-descent", scene.load.displacement, *tangential_arguments(scene.load)]
+
+
+def tangential_arguments(load):
+    """The FreeFEM arguments of a load's tangential force or displacement (arguments.idp;
+    the monolithic solve's too)."""
+    if load.tangential_kind == "tangential_force":
+        return ["-partialslip", 1, "-tangential", load.tangential_force]
+    if load.tangential_kind == "tangential_displacement":
+        return ["-partialslip", 1, "-shiftgiven", 1, "-shift", load.tangential_displacement]
+    return []
 
 
 # Probing a map costs one back-substitution per interface unknown, in-process, a share of

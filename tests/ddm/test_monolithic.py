@@ -158,11 +158,16 @@ def test_forces_balance(case):
     if case[2].scene.load.force is not None:
         assert abs(summary["total_force"] / case[2].scene.load.force - 1) < 1e-5
     # on a flat base the friction force is mu times the normal one (none without it),
-    # under partial slip the stamp's tangential force
+    # under partial slip the stamp's tangential force (a given shift's: below mu P); the
+    # stamp carries it
     scene = case[2].scene
     expected = (scene.load.tangential_force if scene.partial_slip
                 else scene.friction * force if scene.sliding else 0.0)
+    if scene.load.tangential_displacement is not None:
+        expected = summary["tangential_force"]
+        assert 0 < abs(expected) <= scene.friction * force * (1 + 1e-9)
     assert abs(summary["tangential_force"] - expected) < 1e-6 * force
+    assert abs(summary["stamp_tangential_force"] - expected) < 1e-5 * force
 
 
 def test_every_patch_passes_on_what_it_receives(case):

@@ -25,6 +25,13 @@ def _partial(model, share, friction=0.5, **overrides):
     return replace(scene, symmetric=False, friction=friction, coatings=coatings, load=load)
 
 
+def _shifted(model, shift, friction=0.5):
+    """The same scene with the stamp's shift along x1 given (displacement control)."""
+    scene = _partial(model, 0.0, friction)
+    return replace(scene, load=replace(scene.load, tangential_force=None,
+                                       tangential_displacement=shift))
+
+
 def _turned(scene, peak):
     """A load path: pressed alone, pulled to ``peak`` times the load's tangential force,
     then brought to the load's own."""
@@ -39,7 +46,9 @@ CASES = {
     # monolithic.edp); the bodies of one material, and a shell (a coated block under
     # 3 E: the load path's below, whose pull is this at another origin)
     "partial slip, bare block, Q = mu P / 2": (_partial(None, 0.5), Settings(eps_u=1e-8)),
-    "partial slip, shell, Q = 0.3 mu P": (_partial("shell", 0.3), Settings(eps_u=1e-8)),
+    # the shift given (Q its answer, 0.3 mu P at a shift of 0.042 b)
+    "partial slip, shell, the stamp shifted by 0.05 b": (_shifted("shell", 0.05),
+                                                         Settings(eps_u=1e-8)),
     # a load path: pressed alone first, pulled to Q*, then turned back past zero (each
     # step's sticking points keep where they stood at the end of the step before, the
     # slip reverses at the ends); every step in the monolithic solve too

@@ -141,6 +141,15 @@ BAD = [
         "force = 0.02", "force = 0.02\ntangential_force = 0.004\n"
         "path = [{force = 0, tangential_force = 0}]"),
      ["load.path[1].force = 0 must be a positive number"]),
+    ("a tangential force and a shift", _edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+        "force = 0.02", "force = 0.02\ntangential_force = 0.004\ntangential_displacement = 0.01"),
+     ["load must give at most one of tangential_force or tangential_displacement"]),
+    ("a load path's step of the other kind", _edit(
+        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+        "force = 0.02", "force = 0.02\ntangential_displacement = 0.01\n"
+        "path = [{tangential_force = 0.001}]"),
+     ["load.path[1].tangential_force with load.tangential_displacement"]),
     ("a load path's unknown key", _edit(
         BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
         "force = 0.02", "force = 0.02\ntangential_force = 0.004\npath = [{shift = 0.1}]"),

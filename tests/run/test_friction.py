@@ -152,3 +152,36 @@ def test_pressing_then_pulling_is_pulling_at_once_between_bodies_of_one_material
     for path_name, codes in (("at_once", ["partial_slip_path"]), ("pressed_first", [])):
         scene = replace(coated, sliding=False, load=replace(load, path=path_name))
         assert [w["code"] for w in prepare(scene, SETTINGS).warnings] == codes
+
+
+def test_a_given_shift_is_the_force_it_carries_and_beyond_the_stick_limit_sliding():
+    """Displacement control along x1 (load.tangential_displacement) against the two
+    other ways the solver has: the shift the tangential force Q = mu P / 2 needs gives
+    back Q (to 1e-9 mu P) and its traction (measured 2e-9 of the peak pressure; the
+    force control solves a 2x2 system for the descent and the shift, this one gives the
+    shift); three times that shift slips everywhere, and the answer is full sliding's
+    (the sliding law, not the stick and slip states: measured 5e-9)."""
+    scene = replace(_sliding(0.5), coatings=())
+    mu_p = 0.5 * scene.load.force
+
+    def loaded(**tangential):
+        return solve(replace(scene, sliding=False,
+                             load=replace(scene.load, **tangential)), SETTINGS)
+    pulled = loaded(tangential_force=0.5 * mu_p)
+    shift = pulled.summary["stamp_shift"]
+    assert shift > 0
+
+    given = loaded(tangential_displacement=shift)
+    scale = pulled.contact.sigma_n.abs().max()
+    assert given.summary["tangential_force"] == pytest.approx(0.5 * mu_p, rel=1e-9)
+    assert given.summary["stamp_shift"] == shift
+    np.testing.assert_allclose(given.contact.sigma_t, pulled.contact.sigma_t, rtol=0,
+                               atol=1e-7 * scale)
+    np.testing.assert_allclose(given.summary["stick_zones"], pulled.summary["stick_zones"],
+                               rtol=0, atol=1e-6)
+    sliding, beyond = solve(scene, SETTINGS), loaded(tangential_displacement=3 * shift)
+    assert beyond.summary["stick_zones"] == []
+    assert beyond.summary["tangential_force"] == pytest.approx(mu_p, rel=1e-8)
+    for column in ("sigma_n", "sigma_t"):
+        np.testing.assert_allclose(beyond.contact[column], sliding.contact[column], rtol=0,
+                                   atol=1e-7 * scale)
