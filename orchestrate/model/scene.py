@@ -633,6 +633,8 @@ class Scene:
         _require(not self.symmetric, "symmetric",
                  f"{kind} needs symmetric = false: the tangential load breaks the mirror "
                  "symmetry of a half model (model the whole scene)")
+        # a rigid stamp's shift would be a second unknown of its Robin problem: tried, its
+        # loop diverged where the stick zone's ends settle (not kept)
         _require(not self.indenter.rigid, "indenter.rigid",
                  f"{kind} with indenter.rigid = true: a rigid indenter's shift is not "
                  "modelled yet; give the indenter a modulus")

@@ -216,6 +216,11 @@ class Subdomains:
     def _stamp(self, worker):
         return any(self.problem.subdomains[name].stamp for name in self.parts[worker])
 
+    def _shifts(self, worker):
+        """Whether the worker's stamp shifts along x1 (partial slip): its map, affine in
+        the data through the descent alone, would not carry the shift (robin.idp)."""
+        return self.problem.scene.partial_slip and self._stamp(worker)
+
     def solve_directly(self):
         """From now on every worker gives its map, and the loop solves each contact set
         directly (what "direct" does): an iterated inner solve that failed falls back
@@ -321,7 +326,8 @@ class Subdomains:
     def solves_directly(self):
         """Whether every worker gives its map, so the loop solves each contact set
         directly."""
-        return self.direct and all(self._to_map(entry) for entry in self.entries.values())
+        return self.direct and all(self._to_map(entry) and not self._shifts(name)
+                                   for name, entry in self.entries.items())
 
     def _to_map(self, entry):
         return self.map_new or (entry.scenes >= 2 and self.session.map_kept)
@@ -340,7 +346,8 @@ class Subdomains:
     def _send_map_requests(self, requests):
         for name in requests:
             entry = self.entries[name]
-            if entry.robin_map is None and name not in self._pending and self._to_map(entry):
+            if (entry.robin_map is None and name not in self._pending and self._to_map(entry)
+                    and not self._shifts(name)):
                 send_map_request(entry.worker, requests[name])
                 self._pending[name] = requests[name]
 
