@@ -641,7 +641,7 @@ class _ActiveSetLoop(_Loop):
         partial_slip = self.problem.scene.partial_slip
         friction_points = sum(layout.interfaces[i].size for i in layout.friction_indices)
         psi = np.concatenate([psi, np.full(friction_points, 0.0 if partial_slip else 1.0)])
-        previous_psi, update, seen = None, 0, {psi.tobytes()}
+        previous_psi, update, seen, cycled = None, 0, {psi.tobytes()}, False
         tolerance = max(eps, knobs.predicted_set_tolerance if predicted
                         else knobs.active_set_tolerance)
         for iteration in range(1, knobs.max_iterations + 1):
@@ -681,8 +681,12 @@ class _ActiveSetLoop(_Loop):
                 return self.result(image, psi, *failure)
             previous_psi = psi
             # after a cycle, the tractions too (under a stiff Robin parameter they can lag
-            # behind the displacements, and an edge point flips on their error)
-            inexact = change[0] if tolerance > eps else max(change[:2])
+            # behind the displacements, and an edge point flips on their error), and the
+            # displacements' estimated error (a slow contraction's change hides its
+            # distance: a rigid stamp's sets cycled on changes of 1e-5, errors of 0.1)
+            inexact = max(change[:2]) if cycled else change[0]
+            if cycled:
+                inexact = max(inexact, displacement_error)
             if (predicted or self.start_state is not None) and update == 0:
                 # the predicted set is left only once the displacements' estimated error
                 # is below the tolerance too: a slow map's change hides its distance (a
@@ -699,7 +703,7 @@ class _ActiveSetLoop(_Loop):
                         return self.result(image, psi, "stagnated",
                                            f"the contact set cycles (update {update + 1} "
                                            "returns to an earlier set)")
-                    tolerance, seen = max(eps, 0.1 * tolerance), set()
+                    tolerance, seen, cycled = max(eps, 0.1 * tolerance), set(), True
                 seen.add(new_psi.tobytes())
                 psi, x, update = new_psi, image, update + 1
                 if update == 1 and predicted and tolerance > eps:
