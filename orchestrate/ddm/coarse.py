@@ -58,7 +58,8 @@ def coarse_laws(coarse, layout, psi):
     """The coarse problem's Robin laws for the contact set psi, every side's parameter by
     the fine run's rule, inactive points held (solved from its maps)."""
     settings = coarse.settings
-    sides = side_parameters(coarse, coarse.robin, settings.robin_sides, settings.hold_contrast)
+    sides = side_parameters(coarse, coarse.robin, settings.robin_sides, settings.hold_contrast,
+                            split_bonds=False)      # as the fine loop's under two levels
     return robin_laws(coarse, layout, psi, coarse.penalty, sides, direct=True)
 
 

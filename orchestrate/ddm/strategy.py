@@ -159,8 +159,9 @@ class Strategy:
         ``weighed``, what that was decided on."""
         if not self.inner_solve.pending:
             return self
-        return replace(self, inner_solve=replace(
-            self.inner_solve, decided=DIRECT if direct else ITERATE, decided_on=weighed))
+        return replace(self, sides=_solved_directly(self.sides, direct),
+                       inner_solve=replace(self.inner_solve, decided=DIRECT if direct
+                                           else ITERATE, decided_on=weighed))
 
     def record(self, scales, units):
         """summary.json's "strategy": in b and E, theta and gamma also in the scene's
@@ -182,6 +183,12 @@ class Strategy:
         record["sides"] = [{**side, "scene_gamma": side["gamma"] * factor, "scene_unit": unit}
                            for side in record["sides"]]
         return record
+
+
+def _solved_directly(sides, direct):
+    """The sides' parameters where each contact set is solved directly (``direct``):
+    every bond's unsplit (robin_parameters.SideParameter.direct_gamma)."""
+    return tuple(side.solved_directly() for side in sides) if direct else sides
 
 
 def plan_strategy(settings, problem, coarse=None, half_width=None, contrast=False):
@@ -214,9 +221,11 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, contrast=Fals
                else (tuple(name for name, _ in workers),) if inside else problem.sweep),
         # two levels: the coarse level models the fine iteration with every side held
         # (its maps need fixed matrices), so the fine loop holds them too
-        sides=side_parameters(problem, problem.robin, settings.robin_sides,
-                              settings.hold_contrast, paper,
-                              hold_all=inner_solve.planned == TWO_LEVEL),
+        sides=_solved_directly(side_parameters(problem, problem.robin, settings.robin_sides,
+                                               settings.hold_contrast, paper,
+                                               hold_all=inner_solve.planned == TWO_LEVEL,
+                                               split_bonds=inner_solve.planned != TWO_LEVEL),
+                               inner_solve.planned == DIRECT),
         inner_solve=inner_solve,
         theta=Parameter(settings.theta, "b/E", problem.penalty,
                         default_rule if settings.theta == theta else "given (theta)"),

@@ -26,6 +26,7 @@ from orchestrate.ddm.robin import ConvergenceMonitor, run_robin_loop
 from orchestrate.ddm.strategy import (COATED_BASE, DIRECT, DIRECT_OR_ITERATE, ITERATE,
                                       NO_INNER_SOLVE, TWO_LEVEL, LoopKnobs)
 from orchestrate.errors import ParameterError
+from orchestrate.model.estimate import contact_half_width
 from orchestrate.model.scene import KNOB_RANGES, Settings
 from orchestrate.model.scene_file import SCENES_DIR, paper_scene, scene_and_settings
 from orchestrate.run.plan import prepare
@@ -187,12 +188,26 @@ def test_the_plan_resolves_the_strategy_from_the_settings(values, planned, gamma
     plan = prepare(paper_scene(), settings)
     strategy = plan.strategy
     assert strategy.loop == "active-set"
-    # the paper's bodies are equal: every side has the run's gamma; iterated on one
-    # level it releases its inactive points, under a coarse level it holds them
+    # the paper's bodies are equal: every contact side has the run's gamma, and so has
+    # every bond side where each set is solved directly or under a coarse level;
+    # iterated on one level, a bond's gamma is split by the coating's Dirichlet-to-Neumann
+    # response against the base's at the contact's wavenumber (robin_parameters.
+    # bond_ratio); iterated on one level it releases its inactive points, under a coarse
+    # level it holds them
     assert len(strategy.sides) == 2 * len(plan.problem.interfaces)
-    assert all(side.gamma == strategy.gamma.solver_value
-               and side.hold_inactive == (planned == TWO_LEVEL) and not side.stiff_neighbour
-               for side in strategy.sides)
+    gamma_run = strategy.gamma.solver_value
+    scene = plan.problem.scene
+    coating, a = scene.coatings[0], contact_half_width(scene)
+    ratio = (scene.base.E / (1 - scene.base.nu ** 2)) / (
+        coating.E / (1 - coating.nu ** 2) * min(1.0, math.pi * coating.thickness / a))
+    split = math.sqrt(min(max(ratio, 1.0), 256.0)) if planned not in (DIRECT, TWO_LEVEL) else 1.0
+    assert planned in (DIRECT, TWO_LEVEL) or split > 1    # the paper's coating is thin
+    for side in strategy.sides:
+        bond = side.interface.startswith("bond")
+        expected = gamma_run * (1.0 if not bond else split if side.side == 0 else 1 / split)
+        assert side.gamma == pytest.approx(expected, rel=1e-12), side
+        assert side.direct_gamma == gamma_run, side
+        assert side.hold_inactive == (planned == TWO_LEVEL) and not side.stiff_neighbour
     # with bonds "inside", iterated on one level, the coating is solved inside the base's
     # worker; by default ("auto") only under a contrast of the bodies, which the paper's
     # scene has not
