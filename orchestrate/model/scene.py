@@ -449,8 +449,9 @@ class Scene:
     ``friction``, where given, on its top); ``sliding``: the indenter
     slides steadily towards +x1 over the base (full sliding: the friction traction
     mu p wherever the bodies touch, the indenter dragging the surfaces it touches
-    along), or load.tangential_force (partial slip). Friction needs one of them, and
-    both a full plane model (symmetric = false): friction breaks the mirror symmetry."""
+    along), or load.tangential_force or load.tangential_displacement (partial slip).
+    Friction needs one of them, and both a full plane model (symmetric = false):
+    friction breaks the mirror symmetry."""
 
     indenter: Indenter
     base: Base
