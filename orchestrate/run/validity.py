@@ -143,10 +143,11 @@ def scene_warnings(scene, given, settings, say, a):
     warnings = []
     if (scene.partial_slip and scene.load.tangential and scene.load.path == "at_once"
             and _unlike_bodies(scene)):
+        kind = scene.load.tangential_kind
         warnings.append(_warning(
-            "partial_slip_path", "load.tangential_force between unlike bodies (a coating, "
-            "or an indenter of another material): the force and the tangential force are "
-            "applied at once, while pressing alone already slips between unlike bodies "
+            "partial_slip_path", f"load.{kind} between unlike bodies (a coating, or an "
+            f"indenter of another material): the load and the {kind.replace('_', ' ')} "
+            "are applied at once, while pressing alone already slips between unlike bodies "
             "(Dundurs' beta is not 0), so the answer is that of proportional loading, not "
             "of pressing, then pulling (load.path = \"pressed_first\")"))
     depth = base_depth(scene.base)
