@@ -49,6 +49,7 @@ from orchestrate.ddm.interface_system import InterfaceSystem
 from orchestrate.ddm.state import StateLayout
 from orchestrate.model.scene import Settings
 
+
 @dataclass
 class RobinLaw:
     """One side's Robin condition sigma_n(u) + alpha u = alpha g, its data affine in the
@@ -577,10 +578,13 @@ def predicted_contact(problem, layout, half_width):
     in the layout's order; None without an estimate."""
     if not half_width:
         return None
-    scene = problem.scene
-    centre = 0.0 if scene.symmetric or scene.mirror_symmetric else scene.indenter.centre
     x1 = np.concatenate([problem.interfaces[i].position[:, 0] for i in layout.contact_indices])
-    return np.abs(x1 - centre) / half_width
+    return np.abs(x1 - _contact_centre(problem.scene)) / half_width
+
+
+def _contact_centre(scene):
+    """x1 of the contact's centre before any load: under the indenter's lowest point."""
+    return 0.0 if scene.symmetric or scene.mirror_symmetric else scene.indenter.centre
 
 
 def predicted_friction_states(problem, layout, half_width):
@@ -591,20 +595,15 @@ def predicted_friction_states(problem, layout, half_width):
     a bare block 68 iterations and 8 contact sets down to 60 and 2, a stretch shell
     under 3 E 92 and 13 down to 78 and 5, a 2D coating 70 and 6 down to 69 and 4; the
     opposite sign took 75-91.)"""
-    scene = problem.scene
-    points = [problem.interfaces[i] for i in layout.friction_indices]
-    states = [np.zeros(face.size) for face in points]
-    q = scene.load.tangential_force
-    if not half_width or q is None or not points:
-        return np.concatenate(states) if states else np.zeros(0)
-    least = min(float(np.min(face.friction)) for face in points)
-    share = abs(q) / (least * scene.load.force) if least > 0 else 1.0
-    stick = half_width * math.sqrt(max(0.0, 1.0 - share))
-    centre = scene.indenter.centre
-    for face, state in zip(points, states):
-        distance = np.abs(face.position[:, 0] - centre)
-        state[(distance > stick) & (distance <= half_width)] = np.sign(q)
-    return np.concatenate(states)
+    scene, q = problem.scene, problem.scene.load.tangential_force
+    faces = [problem.interfaces[i] for i in layout.friction_indices]
+    if not half_width or q is None or not faces:
+        return np.zeros(sum(face.size for face in faces))
+    least = min(float(np.min(face.friction)) for face in faces)
+    stick = half_width * math.sqrt(max(0.0, 1.0 - abs(q) / (least * scene.load.force)))
+    distance = np.abs(np.concatenate([face.position[:, 0] for face in faces])
+                      - _contact_centre(scene))
+    return np.where((distance > stick) & (distance <= half_width), np.sign(q), 0.0)
 
 
 class _ActiveSetLoop(_Loop):

@@ -72,7 +72,7 @@ class SideParameter:
     stiff_neighbour: bool       # the neighbour more than hold_contrast times as stiff
     # where each contact set is solved directly the fixed point is all that counts: a
     # bond's sides keep the unsplit gamma (its system's rounding is today's)
-    direct_gamma: float = None
+    direct_gamma: float
 
     def solved_directly(self):
         return replace(self, gamma=self.direct_gamma)

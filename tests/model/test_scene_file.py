@@ -50,6 +50,12 @@ def _edit(text, old, new):
     return text.replace(old, new)
 
 
+def _pulled(load):
+    """BASE as a full model with mu = 0.5, its [load] given ``load`` beside the force."""
+    return _edit(BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
+                 "force = 0.02", "force = 0.02\n" + load)
+
+
 # (name, file text, words the message must hold: the key and the allowed range)
 BAD = [
     ("unknown key", _edit(BASE, "width = 4.0\nheight = 8.0\n[base]", "width = 4.0\nheight = 8.0\n"
@@ -114,9 +120,7 @@ BAD = [
                                                  "force = 0.02\ntangential_force = 0.004")
      .replace("symmetric = true", "friction = 0.5"),
      ["load.tangential_force needs symmetric = false"]),
-    ("a tangential force at the friction's limit", _edit(
-        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
-        "force = 0.02", "force = 0.02\ntangential_force = 0.01"),
+    ("a tangential force at the friction's limit", _pulled("tangential_force = 0.01"),
      ["load.tangential_force = 0.01 must be below mu P = 0.5 x 0.02", "sliding = true"]),
     ("a tangential force while sliding", _edit(
         BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5\nsliding = true"),
@@ -126,37 +130,25 @@ BAD = [
         BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
         "force = 0.02", "displacement = 1e-3\ntangential_force = 0.004"),
      ["load.tangential_force = 0.004 needs load.force"]),
-    ("a tangential force on a rigid indenter", _edit(_edit(
-        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
-        "force = 0.02", "force = 0.02\ntangential_force = 0.004"),
+    ("a tangential force on a rigid indenter", _edit(
+        _pulled("tangential_force = 0.004"),
         "height = 8.0\n[base]", "height = 8.0\nrigid = true\n[base]"),
      ["indenter.rigid = true", "shift is not modelled"]),
-    ("a load path's step beyond the friction's limit", _edit(
-        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
-        "force = 0.02", "force = 0.02\ntangential_force = 0.004\n"
-        "path = [{tangential_force = 0}, {tangential_force = -0.012}]"),
+    ("a load path's step beyond the friction's limit", _pulled(
+        "tangential_force = 0.004\npath = [{tangential_force = 0}, {tangential_force = -0.012}]"),
      ["load.path[2].tangential_force = -0.012 must be below mu P = 0.5 x 0.02 in size"]),
-    ("a load path's step unpressed", _edit(
-        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
-        "force = 0.02", "force = 0.02\ntangential_force = 0.004\n"
-        "path = [{force = 0, tangential_force = 0}]"),
+    ("a load path's step unpressed", _pulled(
+        "tangential_force = 0.004\npath = [{force = 0, tangential_force = 0}]"),
      ["load.path[1].force = 0 must be a positive number"]),
-    ("a tangential force and a shift", _edit(
-        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
-        "force = 0.02", "force = 0.02\ntangential_force = 0.004\ntangential_displacement = 0.01"),
+    ("a tangential force and a shift", _pulled(
+        "tangential_force = 0.004\ntangential_displacement = 0.01"),
      ["load must give at most one of tangential_force or tangential_displacement"]),
-    ("a load path's step of the other kind", _edit(
-        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
-        "force = 0.02", "force = 0.02\ntangential_displacement = 0.01\n"
-        "path = [{tangential_force = 0.001}]"),
+    ("a load path's step of the other kind", _pulled(
+        "tangential_displacement = 0.01\npath = [{tangential_force = 0.001}]"),
      ["load.path[1].tangential_force with load.tangential_displacement"]),
-    ("a load path's unknown key", _edit(
-        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
-        "force = 0.02", "force = 0.02\ntangential_force = 0.004\npath = [{shift = 0.1}]"),
+    ("a load path's unknown key", _pulled("tangential_force = 0.004\npath = [{shift = 0.1}]"),
      ["unknown key load.path[1].shift", "allowed: force, tangential_force"]),
-    ("a load path of numbers", _edit(
-        BASE.replace("symmetric = true", "symmetric = false\nfriction = 0.5"),
-        "force = 0.02", "force = 0.02\ntangential_force = 0.004\npath = [0.0, 0.004]"),
+    ("a load path of numbers", _pulled("tangential_force = 0.004\npath = [0.0, 0.004]"),
      ["load.path[1] = 0.0 must be a table {force, tangential_force}"]),
     ("a friction in words", _edit(BASE, "symmetric = true",
                                   "symmetric = false\nsliding = true\nfriction = \"high\""),
