@@ -469,13 +469,18 @@ class _Loop:
 
     def part_errors(self, image, x, anderson, scale):
         """Each part's estimated relative error (_ActiveSetLoop's docstring):
-        ||r|| max ||dx_part|| / ||dr|| / ||x_part||, in the scaled norm of the
-        acceleration (displacements as they are, tractions over gamma); displacements
-        first."""
+        ||r|| max ||dx_part|| / ||dr|| / ||x_part||, and at least the part's own residual
+        ||r_part|| / ||x_part||, in the scaled norm of the acceleration (displacements as
+        they are, tractions over gamma); displacements first. A part no iterate has
+        moved (the pressure of a contact with no point in contact: zero throughout) has
+        no error, not the whole residual's: measured against component_floor of the
+        largest traction, that had asked the other parts for a thousand times their
+        tolerance."""
         sizes = self.part_sizes(self.layout.part_norms(image))
         sizes[1:] /= self.gamma                       # the acceleration's scaling
-        residual = float(np.linalg.norm((image - x) * scale))
-        return np.maximum(anderson.amplification(), 1.0) * residual / sizes
+        residuals = (image - x) * scale
+        own = np.array([np.linalg.norm(residuals[part]) for part in self.layout.parts])
+        return np.maximum(anderson.amplification() * np.linalg.norm(residuals), own) / sizes
 
     def error_estimate(self, image, x, anderson, scale):
         """The largest relative error of a part of the state, with estimate_margin."""
