@@ -117,6 +117,9 @@ def measure(path, progress=print):
                    iterations=summary["iterations"],
                    contact_sets=summary["active_set_changes"] + 1,
                    inner_solve=summary["inner_solve_used"],
+                   final_set=int(result.history.groupby("active_set_update").size().iloc[-1]),
+                   setup_s=summary["setup_time_s"], loop_only_s=summary["loop_time_s"],
+                   outputs_s=summary["outputs_time_s"],
                    unknowns=sum(summary["dofs"].values()),
                    warnings=", ".join(w["code"] for w in summary["warnings"]))
     progress(f"{path.stem}: loop {row['status']} in {row['time_s']:.1f} s")
@@ -190,6 +193,23 @@ def write_report(table, out, command="python -m studies.gallery"):
                        f"at the median (at most {significant(converged.time_s.max())} s), "
                        f"{significant(converged.time_ratio.median())} times the monolithic "
                        "solve's time at the median.")
+    report.section("Where the time goes")
+    report.table(converged, [
+        Column("scene", "scene"),
+        Column("time_s", "run", seconds, "the run's wall time, as above"),
+        Column("setup_s", "setup", seconds, "meshes and the workers' start (assembly)"),
+        Column("loop_only_s", "loop", seconds, "the Robin loop, its first solves "
+               "factorising"),
+        Column("outputs_s", "outputs", seconds, "the stresses and the files"),
+        Column("final_set", "final set", "{:.0f}", "the iterations of the final contact "
+               "set (its linear iterations where iterated)")])
+    if len(converged):
+        shares = converged[["setup_s", "loop_only_s", "outputs_s"]].div(converged.time_s, axis=0)
+        report.finding(f"At the median, setup takes {percent_g(shares.setup_s.median())}, "
+                       f"the loop {percent_g(shares.loop_only_s.median())} and the outputs "
+                       f"{percent_g(shares.outputs_s.median())} of a run; the final contact "
+                       f"set took at most {converged.final_set.max():.0f} iterations "
+                       f"({converged.loc[converged.final_set.idxmax(), 'scene']}).")
     failed = table[~table.converged]
     if len(failed):
         report.finding("Not converged: " + listing(f"{row.scene} ({row.status})"

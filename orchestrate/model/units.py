@@ -84,7 +84,7 @@ KINDS = {
         "h2_over_a", "contact", "bond", "shear", "shell", "stretch_shell", "elastic",
         "mesh_dependent", "converged", "end_zone", "elements_across_contact")},
     **{name: SECONDS for name in ("seconds", "wait", "wall_time_s", "setup_time_s",
-                                  "time_per_iteration_s")},
+                                  "loop_time_s", "outputs_time_s", "time_per_iteration_s")},
     "normal_mismatch_deg": DEGREES,
     **{f"n{corner}": INDEX for corner in range(6)},     # NAME_cells.csv: rows of NAME.csv
 }

@@ -252,6 +252,7 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
                 loop.history = earlier + loop.history
                 loop.iterations = len(loop.history)
                 inner_solve_used = f"{fallback['inner_solve']} ({fallback['status']}), then direct"
+            loop_seconds = time.perf_counter() - started - setup_seconds
             if loop.converged:
                 reached = zone_end_reached(problem, loop.psi)
                 if reached is not None:
@@ -280,6 +281,8 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
             "error_estimate": loop.error_estimate,
             "wall_time_s": None,
             "setup_time_s": setup_seconds,
+            "loop_time_s": loop_seconds,
+            "outputs_time_s": None,
             "time_per_iteration_s": (loop.history[-1]["seconds"] / loop.iterations),
             "active_set_changes": sum(row["active_set_changed"] for row in loop.history),
             "inner_solve_used": inner_solve_used,
@@ -313,6 +316,7 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
         if forms_hashes() != forms:
             summary["warnings"].append(forms_edited_warning())
         summary = scaled_summary(summary, scales)
+        summary["outputs_time_s"] = time.perf_counter() - started - setup_seconds - loop_seconds
         summary["wall_time_s"] = (time.perf_counter() - started    # with the runs left
                                   + sum(fallback["seconds"] for fallback in fallbacks)
                                   + (before.summary["wall_time_s"] if before else 0.0))

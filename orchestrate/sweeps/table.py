@@ -19,7 +19,7 @@ SUMMARY_COLUMNS = ("status", "reason", "converged", "iterations", "final_relativ
                    "total_force",
                    "descent", "interface_force", "peak_contact_stress",
                    "peak_interface_stress", "contact_half_width", "wall_time_s",
-                   "setup_time_s", "time_per_iteration_s")
+                   "setup_time_s", "loop_time_s", "outputs_time_s", "time_per_iteration_s")
 OUTCOME_COLUMNS = SUMMARY_COLUMNS + ("model_chosen", "model_error_estimate", "warnings",
                                      "forms_digest")
 
