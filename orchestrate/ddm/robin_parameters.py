@@ -86,6 +86,15 @@ def contrast_exceeds(problem, rule, hold_contrast):
                side_parameters(problem, problem.robin, rule, hold_contrast))
 
 
+def soft_coating(problem, hold_contrast):
+    """Whether some coating is more than hold_contrast times softer (E*) than the base it
+    is bonded to."""
+    subdomains = problem.subdomains.values()
+    base = next(sub for sub in subdomains if not sub.coating and not sub.stamp)
+    return any(plane_strain_modulus(sub) * hold_contrast < plane_strain_modulus(base)
+               for sub in subdomains if sub.coating)
+
+
 def plane_strain_modulus(subdomain):
     """E* = E / (1 - nu^2): the stiffness of the body's face per wavenumber, times 2."""
     return subdomain.E / (1.0 - subdomain.nu ** 2)

@@ -191,15 +191,15 @@ def _solved_directly(sides, direct):
     return tuple(side.solved_directly() for side in sides) if direct else sides
 
 
-def plan_strategy(settings, problem, coarse=None, half_width=None, contrast=False):
+def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_out=None):
     """The Strategy of ``problem`` (a run's discrete problem, in b and E) under
     ``settings``; ``coarse``: the coarse level's problem where two levels are asked
     (Settings.two_levels), else None; ``half_width``: the a priori contact half-width
-    (b), if known; ``contrast``: auto left out the coarse level its mesh level would
-    take, for a side releases its inactive points (run/plan.py)."""
+    (b), if known; ``coarse_left_out``: why auto left out the coarse level its mesh
+    level would take (run/plan.py), or None."""
     paper = settings.method == PAPER
     theta, default_rule = settings.default_theta()
-    inner_solve = _inner_solve(settings, problem, coarse, contrast)
+    inner_solve = _inner_solve(settings, problem, coarse, coarse_left_out)
     gamma, gamma_rule = settings.robin_choice()
     inside = _bonds_inside(settings, problem, inner_solve, half_width)
     if inside and inner_solve.pending:
@@ -315,7 +315,7 @@ def _workers(problem, inside):
     return others + ((COATED_BASE, coated),)
 
 
-def _inner_solve(settings, problem, coarse, contrast=False):
+def _inner_solve(settings, problem, coarse, coarse_left_out=None):
     """The InnerSolve the settings ask of the active-set loop, where the scene allows it
     (two levels need interfaces that pair up with the coarse level's)."""
     asked = settings.inner_solve
@@ -351,10 +351,7 @@ def _inner_solve(settings, problem, coarse, contrast=False):
     if settings.workers == "fresh":
         return InnerSolve(asked, ITERATE, "auto with a fresh process per solve, which keeps "
                           "no factorisation to probe a map with", None, ITERATE)
-    without_coarse = ("no coarse level (a side releases its inactive points under a "
-                      f"neighbour more than hold_contrast {settings.hold_contrast:g} times as "
-                      "stiff, which the coarse level's fixed maps cannot model); "
-                      if contrast else "")
+    without_coarse = f"no coarse level ({coarse_left_out}); " if coarse_left_out else ""
     return InnerSolve(asked, DIRECT_OR_ITERATE,
                       f"auto: {without_coarse}direct where every new worker's interface unknowns, weighted by "
                       f"its dofs over the largest worker's, are at most auto_direct_unknowns "

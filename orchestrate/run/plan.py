@@ -13,17 +13,22 @@ shell until it must refine (thinner than about b/32), and a run's time follows i
 unknowns (docs/findings.md, "Speed and accuracy").
 
 On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse level out
-where some side's neighbour is more than hold_contrast times as stiff as its body
-(ddm/robin_parameters.py): the coarse level models the loop with every side held, which
-crawls under such a contrast (the near-rigid cylinder at mesh level 2: two levels
-stagnated and fell back to the direct solve in 57 s; iterated with the sides released,
-85 iterations and 7.5 s).
+(_coarse_left_out)
+- where some side's neighbour is more than hold_contrast times as stiff as its body
+  (ddm/robin_parameters.py): the coarse level models the loop with every side held,
+  which crawls under such a contrast (the near-rigid cylinder at mesh level 2: two
+  levels stagnated and fell back to the direct solve in 57 s; iterated with the sides
+  released, 85 iterations and 7.5 s);
+- where a coating is more than hold_contrast times softer than its base: there one level
+  took fewer iterations per contact set than two (the gallery's polymer coating at mesh
+  level 2: 19 against 128, 2.2 s against 13.9 s; the paper's scene under coatings of
+  E/10 and E/30: 15-21 against 19-38).
 """
 
 from dataclasses import dataclass, replace
 
 from orchestrate.ddm.coarse import coarse_settings
-from orchestrate.ddm.robin_parameters import contrast_exceeds
+from orchestrate.ddm.robin_parameters import contrast_exceeds, soft_coating
 from orchestrate.ddm.strategy import DIRECT, plan_strategy
 from orchestrate.mesh.discretization import discretize
 from orchestrate.mesh.problem_size import check_direct_size, check_size, estimated_dofs
@@ -106,22 +111,37 @@ def model_choice(scene, settings):
     return _decided_models(scene, settings)[1]
 
 
+def _coarse_left_out(problem, settings):
+    """Why auto leaves out the coarse level the mesh level would take (the module's
+    text), or None."""
+    if settings.inner_solve != AUTO or not settings.two_levels:
+        return None
+    contrast = f"hold_contrast {settings.hold_contrast:g}"
+    if contrast_exceeds(problem, settings.robin_sides, settings.hold_contrast):
+        return (f"a side releases its inactive points under a neighbour more than "
+                f"{contrast} times as stiff, which the coarse level's fixed maps cannot "
+                "model")
+    if soft_coating(problem, settings.hold_contrast):
+        return (f"a coating more than {contrast} times softer than its base, where one "
+                "level took fewer iterations per contact set than two")
+    return None
+
+
 def prepare(scene, settings):
     """Everything checked and decided before any work (a Plan). ParameterError for
     settings the scene cannot take or a problem too large."""
     solved, model_choice, scales, settings, a, predicted = _decided_models(scene, settings)
     problem = discretize(solved, settings)
-    contrast = (settings.inner_solve == AUTO and settings.two_levels
-                and contrast_exceeds(problem, settings.robin_sides, settings.hold_contrast))
-    # a coarse level would hold every side (contrast), or has no frictional solve
-    # (strategy._inner_solve): one level, its gamma
-    if contrast or (settings.inner_solve == AUTO and settings.two_levels
+    left_out = _coarse_left_out(problem, settings)
+    # one level, its gamma, where the coarse level would not help (left_out), or has no
+    # frictional solve (strategy._inner_solve)
+    if left_out or (settings.inner_solve == AUTO and settings.two_levels
                     and scene.frictional):
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
         problem = discretize(solved, settings)
     check_size(problem)
     coarse = discretize(solved, coarse_settings(settings)) if settings.two_levels else None
-    strategy = plan_strategy(settings, problem, coarse, predicted, contrast)
+    strategy = plan_strategy(settings, problem, coarse, predicted, left_out)
     if strategy.inner_solve.planned == DIRECT:     # asked: its dense system must fit
         check_direct_size(problem)
     chosen = scene.with_models([c.model for c in solved.coatings])

@@ -518,6 +518,23 @@ def test_auto_leaves_the_coarse_level_out_under_contrast():
     assert asked.inner_solve.planned == TWO_LEVEL          # asked, it is kept
 
 
+def test_auto_leaves_the_coarse_level_out_under_a_soft_coating():
+    """At mesh level 2 a coating more than hold_contrast times softer than its base (E*)
+    iterates on one level: the gallery's polymer coating (E/100) took 128 iterations in
+    its final contact set with two levels, 19 without. A coating of the base's modulus, or
+    a stiffer one, keeps two levels; a contrast below hold_contrast too."""
+    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "polymer_coating_on_steel.toml")
+    plan = prepare(scene, Settings(mesh_level=2))
+    assert plan.coarse is None and not plan.problem.settings.two_levels
+    assert "a coating more than hold_contrast 4 times softer" in plan.strategy.inner_solve.rule
+    for E2 in (0.3, 1.0, 5.0):
+        assert prepare(paper_scene(E2=E2), Settings(mesh_level=2)).strategy.two_levels, E2
+    assert not prepare(paper_scene(E2=0.2), Settings(mesh_level=2)).strategy.two_levels
+    assert prepare(paper_scene(E2=0.2), Settings(mesh_level=2, hold_contrast=6)).strategy.two_levels
+    asked = prepare(scene, Settings(mesh_level=2, inner_solve="two-level")).strategy
+    assert asked.inner_solve.planned == TWO_LEVEL          # asked, it is kept
+
+
 def test_a_stalled_iteration_falls_back_only_where_the_maps_are_affordable():
     """auto's direct fallback probes every worker's map: where that costs more than
     auto_fallback_work dof-columns (interface unknowns times dofs, summed) it is not
