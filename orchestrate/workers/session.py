@@ -198,8 +198,15 @@ class _Workers:
 
     def close(self):
         try:
-            for fingerprint in list(self.entries):
-                self.drop(fingerprint)
+            workers = [self.entries.pop(fingerprint).worker for fingerprint in list(self.entries)]
+            try:
+                for worker in workers:          # all asked first: they exit side by side
+                    worker.ask_to_stop()
+                for worker in workers:
+                    worker.wait_stopped()
+            finally:
+                for worker in workers:          # any left by an interruption (kill: twice safe)
+                    worker.kill()
         finally:
             if self.folder_owner is not None:
                 self.folder_owner.__exit__()

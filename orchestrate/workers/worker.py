@@ -131,12 +131,28 @@ class Worker:
     def stop(self, grace=5.0):
         """Ask the worker to exit; kill it if it does not; release the FIFOs."""
         try:
-            if self.process is not None and self.process.poll() is None:
-                try:
-                    self._write(f"{int(Command.STOP)}\n".encode(), timeout=grace)
-                    self.process.wait(timeout=grace)
-                except (WorkerError, subprocess.TimeoutExpired, OSError):
-                    pass
+            self.ask_to_stop(grace)
+            self.wait_stopped(grace)
+        finally:
+            self.kill()
+
+    def ask_to_stop(self, grace=5.0):
+        """Send the worker its stop, not waiting for it to exit (workers stopped together
+        exit side by side: ``wait_stopped`` each after asking all)."""
+        if self.process is not None and self.process.poll() is None:
+            try:
+                self._write(f"{int(Command.STOP)}\n".encode(), timeout=grace)
+            except (WorkerError, OSError):
+                pass
+
+    def wait_stopped(self, grace=5.0):
+        """Wait up to ``grace`` seconds for the worker asked to stop to exit (then kill
+        it and release its FIFOs: ``kill``)."""
+        try:
+            if self.process is not None:
+                self.process.wait(timeout=grace)
+        except subprocess.TimeoutExpired:
+            pass
         finally:
             self.kill()
 
