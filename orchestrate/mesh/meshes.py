@@ -32,6 +32,7 @@ except OSError as error:                 # its shared library could not be loade
                         "ulimit -v? or a broken install)") from None
 import meshio
 import numpy as np
+from scipy.spatial import cKDTree
 
 from orchestrate.mesh.body_plans import GROWTH
 from orchestrate.faults import checkpoint
@@ -340,19 +341,19 @@ def _snap_to_face(points, plan):
     heights = {float(y) for p in plan.face for y in p.points[:, 1]}
     if len(heights) == 1 and all(p.curve in ("edges", "line") for p in plan.face):
         y_face = heights.pop()
-        on_face = np.abs(points[:, 1] - y_face) < 1e-9 * spacing
-        x_nodes = vertices[:, 0]
-        for i in np.flatnonzero(on_face):
-            nearest = np.argmin(np.abs(x_nodes - points[i, 0]))
-            if abs(x_nodes[nearest] - points[i, 0]) < 1e-6 * spacing:
-                points[i, 0] = x_nodes[nearest]
-            points[i, 1] = y_face
+        on_face = np.flatnonzero(np.abs(points[:, 1] - y_face) < 1e-9 * spacing)
+        _snap(points[:, :1], on_face, vertices[:, :1], 1e-6 * spacing)
+        points[on_face, 1] = y_face
         return
-    for i, point in enumerate(points):
-        distance = np.linalg.norm(vertices - point, axis=1)
-        nearest = np.argmin(distance)
-        if distance[nearest] < 1e-6 * spacing:
-            points[i] = vertices[nearest]
+    _snap(points, np.arange(len(points)), vertices, 1e-6 * spacing)
+
+
+def _snap(points, which, targets, within):
+    """Move each of the points ``which`` (rows of ``points``, in place) onto its nearest
+    target where that is closer than ``within``."""
+    distance, nearest = cKDTree(targets).query(points[which], distance_upper_bound=within)
+    close = distance < within
+    points[which[close]] = targets[nearest[close]]
 
 
 def _mirrored(mesh):
