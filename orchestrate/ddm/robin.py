@@ -249,6 +249,35 @@ def updated_contact_set(layout, psi, x, partial_slip=False, slip_origin=None):
     return np.concatenate([contact] + states)
 
 
+def slipping_at_flips(layout, psi, new_psi, x, slip_origin=None):
+    """``new_psi`` with every friction point whose contact the update flips while it
+    sticks kept in contact and slipping instead (phi the sign of its friction traction,
+    or against its slip where it has none yet); None if there is none. At the first or
+    last touch a point's friction limit mu p is near zero, so slipping is the state its
+    law allows there; the update has it stick, and under a pull an edge point can then
+    flip for ever between sticking, with a tension that releases it, and released,
+    penetrating (the fretting example, pulled from the pressed state)."""
+    n = layout.contact_points
+    slices = dict(layout.contact_slices())
+    changed, new_psi = False, new_psi.copy()
+    for i, where in layout.friction_slices():
+        c = slices[layout.interfaces[i].contact]
+        q = 0.5 * (layout.get(x, "t", i, 0) + layout.get(x, "t", i, 1))
+        slip = layout.get(x, "u", i, 0) + layout.get(x, "u", i, 1)
+        if slip_origin is not None:
+            slip = slip - slip_origin[where.start - n:where.stop - n]
+        direction = np.where(q != 0, np.sign(q), -np.sign(slip))
+        released = (psi[c] > 0) & (new_psi[c] == 0) & (psi[where] == 0)
+        entering = (psi[c] == 0) & (new_psi[c] > 0) & (new_psi[where] == 0)
+        flips = (released | entering) & (direction != 0)
+        if flips.any():
+            contact, states = new_psi[c], new_psi[where]
+            contact[flips], states[flips] = 1.0, direction[flips]
+            new_psi[c], new_psi[where] = contact, states
+            changed = True
+    return new_psi if changed else None
+
+
 def updated_friction_states(active, active_next, phi, traction, slip, limit):
     """The semi-smooth update of the friction states phi from a state solved with them
     (freefem/monolithic.edp updates its own alike): at a point in contact, one that
@@ -619,6 +648,8 @@ class _ActiveSetLoop(_Loop):
     tried, the updates were too inexact to tell the edge points apart: from then on they
     wait for a tolerance ten times tighter at each cycle, down to eps_u, and for the
     displacements' estimated error within it; only a cycle under eps_u stops the loop.
+    Under partial slip a cycle first keeps the sticking points whose contact it flips in
+    contact, slipping (slipping_at_flips), unless that set was tried too.
 
     Stopping test. The residual r = x~ - x of an iterate underestimates its distance to
     the fixed point by up to ||(I - J)^-1|| (1/(1 - q) for a map that contracts by q): a
@@ -730,6 +761,12 @@ class _ActiveSetLoop(_Loop):
                 # gallery scenes from a neighbour: the same or 3 more)
                 inexact = max(inexact, displacement_error)
             if inexact < tolerance and not psi_settled:
+                if new_psi.tobytes() in seen and partial_slip:
+                    # a cycle: the sticking points whose contact flips
+                    # stay in contact slipping instead, once (slipping_at_flips)
+                    slipping = slipping_at_flips(layout, psi, new_psi, image, self.slip_origin)
+                    if slipping is not None and slipping.tobytes() not in seen:
+                        new_psi = slipping
                 if new_psi.tobytes() in seen:
                     if tolerance <= eps:
                         return self.result(image, psi, "stagnated",

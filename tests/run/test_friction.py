@@ -185,3 +185,21 @@ def test_a_given_shift_is_the_force_it_carries_and_beyond_the_stick_limit_slidin
     for column in ("sigma_n", "sigma_t"):
         np.testing.assert_allclose(beyond.contact[column], sliding.contact[column], rtol=0,
                                    atol=1e-7 * scale)
+
+
+def test_the_fretting_example_converges_to_the_monolithic_answer():
+    """orchestrate/scenes/fretting_mm.toml (pressed, pulled to 200 N/mm, turned to
+    -100 N/mm): an edge point of its pull flipped for ever between sticking, with a
+    tension that released it, and released, penetrating; the run stagnated. Kept in
+    contact and slipping at such a cycle (robin.slipping_at_flips) it converges to the
+    monolithic solve's answer of the same path: the stamp's shift -0.0071678825633 mm and
+    descent 0.0231862625003 mm (computed once with tests/ddm/test_monolithic.py's
+    monolithic_solution at eps_u 1e-8, 11 Newton solves over the three steps; the loop
+    at that tolerance agreed to 4e-12)."""
+    scene, settings = load_scene(SCENES_DIR / "fretting_mm.toml")
+    summary = solve(scene, settings).summary
+    assert summary["converged"]
+    assert summary["stamp_shift"] == pytest.approx(-0.0071678825633, rel=1e-6)
+    assert summary["descent"] == pytest.approx(0.0231862625003, rel=1e-6)
+    assert [step["tangential_force"] for step in summary["load_steps"]] == pytest.approx(
+        [0.0, 200.0], abs=1e-6)
