@@ -578,15 +578,17 @@ def _contraction_bound(changes, window):
 
 
 def first_contact_set(scene, layout, x, supported=False, predicted=None):
-    """Psi of the state x: where the bodies interpenetrate; under a force, or when
-    ``supported``, where none do, the points within ``predicted`` (the contact points'
-    distances from the contact's centre, over the a priori half-width: at most 1), else
-    the points the indenter touches first (without a support the problem of a force is
+    """Psi of the state x: where the bodies interpenetrate; where none do, the points
+    within ``predicted`` (the contact points' distances from the contact's centre, over
+    the a priori half-width: at most 1; under a descent too, where the zero state's first
+    solve would push the indenter through the whole overlap, a set wider than the answer's
+    by about sqrt(2) that shrank through several updates), else under a force, or when
+    ``supported``, the points the indenter touches first (without a support the problem of a force is
     singular, and so is the whole interface system of a body held only by its contact:
     interface_system.py). A set near the answer's saves the semi-smooth updates that
     grow one from a point (Strategy.first_contact)."""
     psi = (state_penetration(layout, x) < 0).astype(float)
-    if (scene.load.force is not None or supported) and not psi.any():
+    if (scene.load.force is not None or supported or predicted is not None) and not psi.any():
         if predicted is not None and np.any(predicted <= 1.0):
             return (predicted <= 1.0).astype(float)
         psi = (layout.gap <= np.min(layout.gap) + 1e-12 * np.max(layout.gap)).astype(float)
@@ -624,14 +626,15 @@ def _contact_centre(scene):
 def predicted_friction_states(problem, layout, half_width):
     """Partial slip's friction states as Cattaneo's: slipping (phi the sign of Q) where
     |x1 - centre| lies between c = a sqrt(1 - |Q| / (mu P)) and the a priori half-width
-    a, sticking elsewhere; all sticking without an estimate or under a given shift. In
+    a, sticking elsewhere; all sticking without an estimate, under a given shift or a
+    given descent (P is then the answer's). In
     the layout's order of the friction points. (Measured from a cold start, Q = mu P / 2:
     a bare block 68 iterations and 8 contact sets down to 60 and 2, a stretch shell
     under 3 E 92 and 13 down to 78 and 5, a 2D coating 70 and 6 down to 69 and 4; the
     opposite sign took 75-91.)"""
     scene, q = problem.scene, problem.scene.load.tangential_force
     faces = [problem.interfaces[i] for i in layout.friction_indices]
-    if not half_width or q is None or not faces:
+    if not half_width or q is None or not faces or scene.load.force is None:
         return np.zeros(sum(face.size for face in faces))
     least = min(float(np.min(face.friction)) for face in faces)
     stick = half_width * math.sqrt(max(0.0, 1.0 - abs(q) / (least * scene.load.force)))

@@ -127,9 +127,10 @@ class Strategy:
     gamma: Parameter                # the Robin parameter, E/b
     coarse: Optional[CoarseMesh]    # with two levels, else None
     knobs: LoopKnobs
-    # under a force, the first contact set: the points within this a priori contact
-    # half-width (b; model/estimate.py) where the first state interpenetrates nowhere
-    # (robin.py's first_contact_set); None: the points touched first
+    # the first contact set: the points within this a priori contact half-width (b;
+    # model/estimate.py, under a descent from the force it takes) where the first state
+    # interpenetrates nowhere (robin.py's first_contact_set); None: the points touched
+    # first (under a descent, those the first solve pushes through)
     first_contact: Optional[float] = None
     # the workers, ((worker, (its subdomains, ...)), ...): every subdomain its own, or
     # (where Settings.bonds takes them inside) the base and its coatings one, COATED_BASE
@@ -233,8 +234,7 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_o
         coarse=(CoarseMesh(1, coarse_element_size(settings), _coarse_rule(settings))
                 if inner_solve.planned == TWO_LEVEL else None),
         knobs=LoopKnobs.of(settings),
-        first_contact=(half_width if half_width and problem.scene.load.force is not None
-                       and not paper else None),
+        first_contact=half_width if half_width and not paper else None,
         workers=workers,
         bonds_inside=(tuple(i for i, interface in enumerate(problem.interfaces)
                             if interface.kind == "bond") if inside else ()))

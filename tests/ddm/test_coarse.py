@@ -117,7 +117,7 @@ def _relative_l2(a, b):
     return float(np.linalg.norm(a - b) / np.linalg.norm(b))
 
 
-def test_two_levels_give_the_plain_loops_answer_in_under_a_quarter_of_its_iterations(
+def test_two_levels_give_the_plain_loops_answer_in_under_a_third_of_its_iterations(
         fine_runs):
     (two, contact, bond), (plain, contact_p, bond_p) = fine_runs["auto"], fine_runs["iterate"]
     assert two["inner_solve_used"] == "two-level" and plain["inner_solve_used"] == "iterate"
@@ -125,7 +125,9 @@ def test_two_levels_give_the_plain_loops_answer_in_under_a_quarter_of_its_iterat
     assert _relative_l2(contact.sigma_n, contact_p.sigma_n) < 2 * EPS_U
     for component in ("sigma_n", "sigma_t"):
         assert _relative_l2(bond[component], bond_p[component]) < 2 * EPS_U
-    assert two["iterations"] < plain["iterations"] / 4
+    # 15 against 50: a quarter before the plain loop started from the predicted contact
+    # set under a descent too (Strategy.first_contact), as the force test's does
+    assert two["iterations"] < plain["iterations"] / 3
 
 
 def test_two_levels_carry_a_force_load(tmp_path):

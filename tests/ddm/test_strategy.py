@@ -474,10 +474,11 @@ def test_a_coarser_coarse_level_gives_the_same_answer(tmp_path):
     assert four["peak_contact_stress"] == pytest.approx(twice["peak_contact_stress"], rel=1e-5)
 
 
-def test_under_a_force_the_first_contact_set_is_the_predicted_one():
-    """Strategy.first_contact: the a priori half-width under a force, none under a
-    descent (the interpenetration is the first set; the paper's loop takes no force);
-    the first set is the contact points within it."""
+def test_the_first_contact_set_is_the_predicted_one():
+    """Strategy.first_contact: the a priori half-width, under a force and under a descent
+    (from the force the descent takes); the paper's loop takes none. The first set is
+    the contact points within it; under a descent it is narrower than the overlap the
+    descent makes (the answer's half-width is about that over sqrt(2))."""
     from orchestrate.ddm.robin import first_contact_set, predicted_contact
     from orchestrate.ddm.state import StateLayout
     from orchestrate.model.estimate import contact_half_width
@@ -493,7 +494,13 @@ def test_under_a_force_the_first_contact_set_is_the_predicted_one():
     assert np.array_equal(psi > 0, x1 <= a) and 5 < psi.sum() < len(psi)
     touched = first_contact_set(plan.problem.scene, layout, layout.zeros())
     assert touched.sum() == 1
-    assert prepare(paper_scene(), Settings()).strategy.first_contact is None
+    paper = prepare(paper_scene(), Settings())
+    a = contact_half_width(paper.problem.scene)
+    assert paper.strategy.first_contact == pytest.approx(a)
+    overlap = math.sqrt(2.0 * paper.problem.scene.indenter.radius
+                        * paper.problem.scene.load.displacement)
+    assert 1.2 < overlap / a < 1.6
+    assert prepare(paper_scene(), Settings(method="paper")).strategy.first_contact is None
 
 
 def test_auto_leaves_the_coarse_level_out_under_contrast():
