@@ -96,7 +96,7 @@ TIMER_PREFIXES = ("cpu_", "back_")   # history.csv: seconds per subdomain (cpu_b
 SUMMARY_AS_IS = ("scene", "settings", "load_steps", "status", "reason", "dofs", "units",
                  "not_estimated", "strategy", "estimated_unknowns", "model", "started_from",
                  "inner_solve_used", "provenance", "sweep_point", "inner_solve_fallback",
-                 "warnings")     # warnings: texts and ratios (validity.py)
+                 "warnings", "refused")     # warnings: texts and ratios (validity.py)
 
 
 # ---- unit names and values with units (pint) -------------------------------------------

@@ -30,6 +30,7 @@ from dataclasses import dataclass, replace
 from orchestrate.ddm.coarse import coarse_settings
 from orchestrate.ddm.robin_parameters import contrast_exceeds, soft_coating
 from orchestrate.ddm.strategy import DIRECT, plan_strategy
+from orchestrate.errors import ParameterError
 from orchestrate.mesh.discretization import discretize
 from orchestrate.mesh.problem_size import check_direct_size, check_size, estimated_dofs
 from orchestrate.model.estimate import (ANSWERS, contact_half_width, estimated_errors,
@@ -61,20 +62,27 @@ def choose_models(scene, settings, a=None):
     for n in auto:
         coating = scene.coatings[n]
         errors = estimated_errors(scene, coating, a)
-        unknowns = {}
+        unknowns, refused = {}, {}
         for model in FIDELITY:
             trial = list(models)
             trial[n] = model
-            unknowns[model] = round(estimated_unknowns(scene.with_models(trial), settings))
-        passing = [m for m in FIDELITY if worst_error(errors[m], answers) <= tolerance]
-        cheapest = min(unknowns[m] for m in passing)           # elastic always passes
+            try:
+                unknowns[model] = round(estimated_unknowns(scene.with_models(trial), settings))
+            except ParameterError as error:     # its mesh too fine for the machine (a
+                refused[model] = error          # micron-thin 2D coating at mesh level 2)
+        passing = [m for m in FIDELITY if m in unknowns
+                   and worst_error(errors[m], answers) <= tolerance]
+        if not passing:                 # elastic always passes the tolerance: refused too
+            raise refused["elastic"]
+        cheapest = min(unknowns[m] for m in passing)
         chosen = [m for m in passing if unknowns[m] <= COST_TIE * cheapest][-1]
         models[n] = chosen
         patches.append({"patch": n + 1, "model": chosen,
                         "estimated_error": worst_error(errors[chosen], answers),
                         "not_estimated": not_estimated(scene, coating, a),
                         "h2_over_a": coating.thickness / a if a else None,
-                        "estimated_errors": errors, "estimated_unknowns": unknowns})
+                        "estimated_errors": errors, "estimated_unknowns": unknowns,
+                        "refused": {model: str(error) for model, error in refused.items()}})
     report = {"tolerance": tolerance, "answers_judged": ANSWERS[answers],
               "contact_half_width_estimate": a, "patches": patches}
     return scene.with_models(models), report

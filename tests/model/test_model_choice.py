@@ -21,6 +21,8 @@ import pytest
 from orchestrate.model import estimate
 from orchestrate.run import plan
 from studies.model_errors import peaks, with_model
+from orchestrate.errors import ParameterError
+from orchestrate.model import scene_and_settings
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, paper_scene
 from tests.conftest import PROJECT_DIR
@@ -130,6 +132,23 @@ def test_auto_chooses_the_cheapest_model_within_tolerance(h2, E2, tolerance, ans
     # nothing within tolerance is cheaper by more than the tie margin
     assert all(costs[chosen] <= plan.COST_TIE * costs[m] for m in passing)
     assert solved == replace(scene, coatings=(replace(scene.coatings[0], model=chosen),))
+
+
+def test_auto_leaves_out_a_model_whose_mesh_the_machine_refuses():
+    """A 1 um DLC coating at mesh level 2: the 2D coating's face would need more samples
+    than a run takes, so auto chooses among the shells (the stretch shell, within the
+    tolerance) and says why the 2D coating was left out, instead of refusing the run.
+    Where no model within the tolerance is left, the 2D coating's refusal stands."""
+    scene, settings = scene_and_settings(SCENES_DIR / "gallery" / "dlc_on_large_steel_part.toml")
+    plan_at_2 = plan.prepare(scene, replace(settings, mesh_level=2))
+    patch = plan_at_2.model_choice["patches"][0]
+    assert patch["model"] == "stretch_shell"
+    assert set(patch["refused"]) == {"elastic"}
+    assert "samples of the face" in patch["refused"]["elastic"]
+    assert set(patch["estimated_unknowns"]) == {"shell", "stretch_shell"}
+    with pytest.raises(ParameterError, match="samples of the face"):
+        plan.prepare(scene, replace(settings, mesh_level=2, model_tolerance=1e-9))
+    assert plan.prepare(scene, settings).model_choice["patches"][0]["refused"] == {}
 
 
 def test_only_auto_patches_are_chosen():
