@@ -270,10 +270,8 @@ def slipping_at_flips(layout, psi, new_psi, x, slip_origin=None):
         released = (psi[c] > 0) & (new_psi[c] == 0) & (psi[where] == 0)
         entering = (psi[c] == 0) & (new_psi[c] > 0) & (new_psi[where] == 0)
         flips = (released | entering) & (direction != 0)
-        if flips.any():
-            contact, states = new_psi[c], new_psi[where]
-            contact[flips], states[flips] = 1.0, direction[flips]
-            new_psi[c], new_psi[where] = contact, states
+        if flips.any():                 # new_psi[c], new_psi[where]: views of new_psi
+            new_psi[c][flips], new_psi[where][flips] = 1.0, direction[flips]
             changed = True
     return new_psi if changed else None
 
@@ -580,12 +578,11 @@ def _contraction_bound(changes, window):
 def first_contact_set(scene, layout, x, supported=False, predicted=None):
     """Psi of the state x: where the bodies interpenetrate; where none do, the points
     within ``predicted`` (the contact points' distances from the contact's centre, over
-    the a priori half-width: at most 1; under a descent too, where the zero state's first
-    solve would push the indenter through the whole overlap, a set wider than the answer's
-    by about sqrt(2) that shrank through several updates), else under a force, or when
-    ``supported``, the points the indenter touches first (without a support the problem of a force is
-    singular, and so is the whole interface system of a body held only by its contact:
-    interface_system.py). A set near the answer's saves the semi-smooth updates that
+    the a priori half-width: at most 1; under a descent too, where the first solve would
+    push the indenter through the whole overlap, about sqrt(2) wider than the answer's
+    set), else under a force, or when ``supported``, the points the indenter touches first
+    (without a support the problem of a force is singular, and so is the whole interface
+    system of a body held only by its contact: interface_system.py). A set near the answer's saves the semi-smooth updates that
     grow one from a point (Strategy.first_contact)."""
     psi = (state_penetration(layout, x) < 0).astype(float)
     if (scene.load.force is not None or supported or predicted is not None) and not psi.any():

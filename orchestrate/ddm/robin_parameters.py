@@ -89,10 +89,15 @@ def contrast_exceeds(problem, rule, hold_contrast):
 def soft_coating(problem, hold_contrast):
     """Whether some coating is more than hold_contrast times softer (E*) than the base it
     is bonded to."""
-    subdomains = problem.subdomains.values()
-    base = next(sub for sub in subdomains if not sub.coating and not sub.stamp)
+    base = problem.subdomains[_base(problem)]
     return any(plane_strain_modulus(sub) * hold_contrast < plane_strain_modulus(base)
-               for sub in subdomains if sub.coating)
+               for sub in problem.subdomains.values() if sub.coating)
+
+
+def _base(problem):
+    """The name of the base: the subdomain neither a coating nor the stamp's."""
+    return next(name for name, sub in problem.subdomains.items()
+                if not sub.coating and not sub.stamp)
 
 
 def plane_strain_modulus(subdomain):
@@ -108,7 +113,7 @@ def bond_ratio(problem, coating):
     if not a > 0:
         return 1.0
     patch = scene.coatings[int(coating[len("coating"):]) - 1]
-    base = next(sub for sub in subdomains.values() if not sub.coating and not sub.stamp)
+    base = subdomains[_base(problem)]
     thin = min(1.0, math.pi * patch.thickness / a)
     ratio = plane_strain_modulus(base) / (plane_strain_modulus(subdomains[coating]) * thin)
     return min(max(ratio, 1.0), BOND_RATIO_LIMIT)
@@ -125,7 +130,7 @@ def side_parameters(problem, gamma, rule, hold_contrast, paper=False, hold_all=F
     loop iterates on one level (split on both levels, the coated roller took 68-76
     iterations at mesh level 2 against 37-46 unsplit)."""
     subdomains = problem.subdomains
-    base = next(name for name, sub in subdomains.items() if not sub.coating and not sub.stamp)
+    base = _base(problem)
     # a thin coating counts as the base it is bonded to: at the contact's scale the
     # coated base offers the base's stiffness (to be refined for thick coatings)
     stiffness = {name: plane_strain_modulus(subdomains[base] if sub.coating else sub)
