@@ -86,6 +86,8 @@ _SETTINGS_HELP = {
     "robin_two_level_per_length": "with two levels, the default gamma times element_size (E)",
     "hold_contrast": "a side holds its inactive contact points (a fixed matrix) only where "
                      "its body is at least this many times as stiff as its neighbour",
+    "contact_split": "iterated on one level without friction, a contact's stiffer side "
+                     "takes its gamma over this, the softer side its own times this",
     "auto_direct_unknowns": "auto solves directly while every new worker has at most this "
                             "many interface unknowns, weighted by its dofs over the largest "
                             "worker's",

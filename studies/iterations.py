@@ -1,15 +1,16 @@
 """Iterations per contact set on the gallery's scenes, against the mesh level: what the
 Robin loop's inner solve costs where it iterates, with the coatings inside the base's
-worker (Settings.bonds "inside", the default) and exchanged across their bonds
-(``python -m studies.iterations``, ``make iterations``).
+worker (Settings.bonds "inside", the default) and exchanged across their bonds, and
+exchanged with a contact's sides unsplit (Settings.contact_split 1, against the default
+split; ``python -m studies.iterations``, ``make iterations``).
 
 Every scene of orchestrate/scenes/gallery/ whose mesh the machine takes is solved with
-the inner solve iterated on one level (inner_solve "iterate"), each way of the bonds,
+the inner solve iterated on one level (inner_solve "iterate"), in each variant,
 at mesh levels 1 to 3 (``--levels``), from a cold start, one run each. A row: the
 Robin iterations of the final contact set (the linear iterations that set's fixed
 point took) and the most any set took, the contact sets, all iterations, the time to
 answer and the unknowns. The table's findings: the largest final-set count at each
-level and its growth from the first level to the last, per way of the bonds.
+level and its growth from the first level to the last, per variant.
 
 Writes results/iterations.csv and results/iterations.md.
 """
@@ -31,17 +32,24 @@ from studies.paths import RESULTS_DIR
 from studies.report import Column, Report, command_line, seconds, significant
 
 GALLERY_DIR = SCENES_DIR / "gallery"
-BONDS = ("inside", "exchanged")
+# (bonds, contact_split): the default split, each way of the bonds; exchanged unsplit
+VARIANTS = (("inside", 4.0), ("exchanged", 4.0), ("exchanged", 1.0))
 
 
-def measure(path, level, bonds):
-    """One scene's run at one mesh level, one way of the bonds: its row."""
+def _variant(bonds, split):
+    return bonds if split == VARIANTS[0][1] else f"{bonds}, unsplit"
+
+
+def measure(path, level, bonds, split):
+    """One scene's run at one mesh level, one variant: its row."""
     scene, settings = scene_and_settings(path)
-    row = {"scene": path.stem, "mesh_level": level, "bonds": bonds}
+    row = {"scene": path.stem, "mesh_level": level, "bonds": bonds, "contact_split": split,
+           "variant": _variant(bonds, split)}
     started = time.perf_counter()
     try:
         result = orchestrate.solve(scene, replace(settings, mesh_level=level,
-                                                  inner_solve="iterate", bonds=bonds))
+                                                  inner_solve="iterate", bonds=bonds,
+                                                  contact_split=split))
     except RunFailed as failed:
         return {**row, "status": failed.summary.get("status"),
                 "time_s": time.perf_counter() - started}
@@ -61,9 +69,9 @@ def study(out, names=None, levels=(1, 2, 3), progress=print):
         if names and path.stem not in names:
             continue
         for level in levels:
-            for bonds in BONDS:
-                row = measure(path, level, bonds)
-                progress(f"{path.stem} level {level} bonds {bonds}: {row['status']}")
+            for bonds, split in VARIANTS:
+                row = measure(path, level, bonds, split)
+                progress(f"{path.stem} level {level} {row['variant']}: {row['status']}")
                 rows.append(row)
     table = pd.DataFrame(rows)
     os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
@@ -77,11 +85,13 @@ def write_report(table, out, command="python -m studies.iterations"):
     report.text("Each gallery scene iterated on one level (inner_solve = iterate), its "
                 "coatings inside the base's worker (bonds = inside; a scene whose patch is "
                 "thicker than the contact keeps them exchanged: 'inside' says which ran) "
-                "and exchanged across their bonds, from a cold start on this machine; one "
-                "run each.")
+                "and exchanged across their bonds; and exchanged with a contact's two sides "
+                "given the neighbour rule's coefficients unsplit (contact_split = 1, "
+                "against the default's 4: docs/method.md, Robin parameters); from a cold "
+                "start on this machine, one run each.")
     report.table(table, [
         Column("scene", "scene"), Column("mesh_level", "level", "{:.0f}"),
-        Column("bonds", "bonds"), Column("status", "outcome"),
+        Column("variant", "variant"), Column("status", "outcome"),
         Column("final_set", "final set", "{:.0f}", "Robin iterations of the final contact set"),
         Column("largest_set", "largest set", "{:.0f}", "the most of any contact set"),
         Column("sets", "sets", "{:.0f}", "contact sets"),
@@ -90,14 +100,15 @@ def write_report(table, out, command="python -m studies.iterations"):
         Column("unknowns", "unknowns", "{:.0f}", "the workers' unknowns"),
         Column("inside", "inside", "{}", "whether the run solved its bonds inside")])
     converged = table[table.status == "converged"]
-    for bonds in BONDS:
-        runs = converged[converged.bonds == bonds]
+    for bonds, split in VARIANTS:
+        variant = _variant(bonds, split)
+        runs = converged[converged.variant == variant]
         if runs.empty:
             continue
         worst = runs.groupby("mesh_level").final_set.max()
         levels = list(worst.index)
         growth = worst.iloc[-1] / worst.iloc[0] - 1
-        report.finding(f"bonds {bonds}: the final contact set took at most "
+        report.finding(f"{variant}: the final contact set took at most "
                        + ", ".join(f"{worst[level]:.0f} (level {level})" for level in levels)
                        + f" iterations; {significant(100 * growth, 2)} % more from level "
                        f"{levels[0]} to {levels[-1]}. Median time at level {levels[0]}: "
@@ -105,7 +116,7 @@ def write_report(table, out, command="python -m studies.iterations"):
     failed = table[table.status != "converged"]
     if len(failed):
         report.finding("Not converged or refused: " + ", ".join(
-            f"{row.scene} level {row.mesh_level} {row.bonds} ({row.status})"
+            f"{row.scene} level {row.mesh_level} {row.variant} ({row.status})"
             for row in failed.itertuples()) + ".")
     return report.write(out)
 

@@ -59,7 +59,7 @@ def coarse_laws(coarse, layout, psi):
     the fine run's rule, inactive points held (solved from its maps)."""
     settings = coarse.settings
     sides = side_parameters(coarse, coarse.robin, settings.robin_sides, settings.hold_contrast,
-                            split_bonds=False)      # as the fine loop's under two levels
+                            split_sides=False)      # as the fine loop's under two levels
     return robin_laws(coarse, layout, psi, coarse.penalty, sides, direct=True)
 
 

@@ -188,7 +188,7 @@ class Strategy:
 
 def _solved_directly(sides, direct):
     """The sides' parameters where each contact set is solved directly (``direct``):
-    every bond's unsplit (robin_parameters.SideParameter.direct_gamma)."""
+    every side's unsplit (robin_parameters.SideParameter.direct_gamma)."""
     return tuple(side.solved_directly() for side in sides) if direct else sides
 
 
@@ -225,7 +225,7 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_o
         sides=_solved_directly(side_parameters(problem, problem.robin, settings.robin_sides,
                                                settings.hold_contrast, paper,
                                                hold_all=inner_solve.planned == TWO_LEVEL,
-                                               split_bonds=inner_solve.planned != TWO_LEVEL),
+                                               split_sides=inner_solve.planned != TWO_LEVEL),
                                inner_solve.planned == DIRECT),
         inner_solve=inner_solve,
         theta=Parameter(settings.theta, "b/E", problem.penalty,

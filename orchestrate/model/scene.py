@@ -84,6 +84,9 @@ KNOB_RANGES = {
     "hold_contrast": (0.0, 1e12, "factor", "0: every side holds, and the inactive points "
                       "of a body as soft as its neighbour crawl; large: no side holds, and "
                       "every worker factorises again for each contact set"),
+    "contact_split": (1.0, 1e3, "factor", "1: one coefficient each side's neighbour "
+                      "offers; far above, each side nears a Neumann or a Dirichlet "
+                      "condition and the exchange stalls"),
     "auto_direct_unknowns": (0, 10 ** 6, "interface unknowns", "0: auto probes no new "
                              "worker's map; beyond, the dense interface system of the "
                              "maps outgrows any machine"),
@@ -804,6 +807,10 @@ class Settings:
                                     # others release them (robin_parameters.py); auto takes
                                     # no coarse level where a neighbour is more than this
                                     # many times as stiff
+    contact_split: float = 4.0      # iterated on one level without friction, a contact's
+                                    # stiffer side takes its neighbour-rule gamma over
+                                    # this, the softer side its own times this
+                                    # (robin_parameters.py); 1: unsplit
     # auto's inner solve:
     auto_direct_unknowns: int = 250  # interface unknowns: auto solves each contact set
                                     # directly while every new worker has at most this

@@ -70,8 +70,10 @@ REPLACED_CONSTANTS = {
 # directly: docs/method.md.)
 # Knobs added since: hold_contrast 4, a side holds its inactive points only on a body
 # at least 4 times as stiff as its neighbour (the figures' scenes, solved directly,
-# hold every side as before).
-ADDED_KNOBS = {"hold_contrast": 4.0, "auto_fallback_work": 1e9}
+# hold every side as before). contact_split 4: a frictionless contact's sides split about
+# the neighbour rule on one level (robin_parameters.py; the figures' scenes, solved
+# directly, keep the rule's gamma).
+ADDED_KNOBS = {"hold_contrast": 4.0, "auto_fallback_work": 1e9, "contact_split": 4.0}
 INTEGER_KNOBS = [key for key, value in REPLACED_CONSTANTS.items() if isinstance(value, int)]
 
 
@@ -200,11 +202,16 @@ def test_the_plan_resolves_the_strategy_from_the_settings(values, planned, gamma
     coating, a = scene.coatings[0], contact_half_width(scene)
     ratio = (scene.base.E / (1 - scene.base.nu ** 2)) / (
         coating.E / (1 - coating.nu ** 2) * min(1.0, math.pi * coating.thickness / a))
-    split = math.sqrt(min(max(ratio, 1.0), 256.0)) if planned not in (DIRECT, TWO_LEVEL) else 1.0
-    assert planned in (DIRECT, TWO_LEVEL) or split > 1    # the paper's coating is thin
+    one_level = planned not in (DIRECT, TWO_LEVEL)
+    split = math.sqrt(min(max(ratio, 1.0), 256.0)) if one_level else 1.0
+    assert not one_level or split > 1    # the paper's coating is thin
+    # a contact's sides split by 4 about gamma on one level, the indenter's the smaller:
+    # the bodies are equal (Settings.contact_split)
+    contact_split = 4.0 if one_level else 1.0
     for side in strategy.sides:
         bond = side.interface.startswith("bond")
-        expected = gamma_run * (1.0 if not bond else split if side.side == 0 else 1 / split)
+        expected = gamma_run * ((split if side.side == 0 else 1 / split) if bond else
+                                (1 / contact_split if side.side == 0 else contact_split))
         assert side.gamma == pytest.approx(expected, rel=1e-12), side
         assert side.direct_gamma == gamma_run, side
         assert side.hold_inactive == (planned == TWO_LEVEL) and not side.stiff_neighbour
@@ -282,8 +289,10 @@ def test_the_record_in_a_scene_whose_stiffer_body_is_not_of_modulus_one():
     record = json.loads(json.dumps(plan.strategy.record(plan.scales, scene.units)))
     assert record["gamma"]["scene_value"] == pytest.approx(1000.0 * settings.robin_parameter)
     assert record["theta"]["scene_value"] == pytest.approx(settings.theta / 1000.0)
+    # the base's side of the contact: the indenter's coefficient, times the contact's
+    # split (Settings.contact_split: the scene iterates on one level)
     assert max(side["scene_gamma"] for side in record["sides"]) == pytest.approx(
-        record["gamma"]["scene_value"])
+        settings.contact_split * record["gamma"]["scene_value"])
 
 
 def test_a_pending_inner_solve_is_recorded_once_decided():
@@ -540,6 +549,44 @@ def test_auto_leaves_the_coarse_level_out_under_a_soft_coating():
     assert prepare(paper_scene(E2=0.2), Settings(mesh_level=2, hold_contrast=6)).strategy.two_levels
     asked = prepare(scene, Settings(mesh_level=2, inner_solve="two-level")).strategy
     assert asked.inner_solve.planned == TWO_LEVEL          # asked, it is kept
+
+
+def _contact_gammas(scene_path, overrides=None, **values):
+    """(indenter side, partner side) gammas of the first contact, over what the neighbour
+    rule alone gives them (the run's gamma times the neighbour's E* over the stiffer
+    body's)."""
+    scene, _ = scene_and_settings(scene_path, overrides or {})
+    plan = prepare(scene, Settings(inner_solve="iterate", **values))
+    sides = [side for side in plan.strategy.sides if side.interface.startswith("contact")][:2]
+    return tuple(side.gamma / side.direct_gamma for side in sides)
+
+
+def test_a_contacts_sides_are_split_about_the_neighbour_rule():
+    """Iterated on one level, a frictionless contact's stiffer side takes a quarter of
+    its neighbour-rule coefficient and the softer side four times its own
+    (Settings.contact_split); faces within CONTACT_TIE count as equal and the
+    indenter takes the smaller. The face of a coated base is the coating layered on the
+    base at the contact's scale (robin_parameters.face_stiffness)."""
+    gallery = SCENES_DIR / "gallery"
+    # equal bodies, a thin hard coating (its face 1.07 times the base's): the indenter's
+    assert _contact_gammas(gallery / "tin_on_steel.toml") == pytest.approx((0.25, 4.0))
+    # a roller of E/100 on steel: the base's, widening the rule's own asymmetry
+    assert _contact_gammas(gallery / "polymer_roller_on_chromed_steel.toml") == \
+        pytest.approx((4.0, 0.25))
+    # a coating of 2 E, h2/a = 0.4, on the base: its face 1.8 times the indenter's
+    assert _contact_gammas(SCENES_DIR / "cylinder_mm.toml") == pytest.approx((4.0, 0.25))
+    # the same scene with the coating's modulus the base's: equal faces
+    assert _contact_gammas(SCENES_DIR / "cylinder_mm.toml", {"coating[1].E": 210000.0}) == \
+        pytest.approx((0.25, 4.0))
+    # not under a coarse level (whose sides are held), nor under friction
+    scene, _ = scene_and_settings(gallery / "tin_on_steel.toml")
+    two_levels = prepare(scene, Settings(inner_solve="two-level")).strategy.sides
+    assert all(side.gamma == side.direct_gamma for side in two_levels
+               if side.interface.startswith("contact"))
+    assert _contact_gammas(SCENES_DIR / "partial_slip.toml") == pytest.approx((1.0, 1.0))
+    assert _contact_gammas(gallery / "tin_on_steel.toml", contact_split=1.0) == (1.0, 1.0)
+    assert _contact_gammas(gallery / "tin_on_steel.toml", contact_split=8.0) == \
+        pytest.approx((0.125, 8.0))
 
 
 def test_a_stalled_iteration_falls_back_only_where_the_maps_are_affordable():
