@@ -10,6 +10,8 @@
 #                   on held-out plane and axisymmetric scenes (results/adequacy/)
 #   make gallery    the engineers' scenes against the monolithic solve (results/gallery.md)
 #   make iterations iterations per contact set against the mesh level (results/iterations.md)
+#   make contrast   iterations per contact set across the indenter's modulus
+#                   (results/indenter_contrast.md)
 #   make line-contact  the field below a line contact, frictionless and sliding, against
 #                   McEwen's closed form (results/line_contact_field.md)
 #   make friction   iterations with friction against without (results/friction_iterations.md),
@@ -27,7 +29,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations indentation line-contact friction sliding
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations contrast indentation line-contact friction sliding
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -156,9 +158,15 @@ sliding: setup
 	$(PYTHON) -m studies.sliding_patches
 
 # Iterations per contact set of the gallery's scenes at mesh levels 1-3, the coatings
-# inside the base's worker and exchanged across their bonds (results/iterations.md)
+# inside the base's worker and exchanged across their bonds, and a contact's sides
+# unsplit (results/iterations.md)
 iterations: setup
 	$(PYTHON) -m studies.iterations
+
+# Iterations per contact set across the indenter's modulus, 1e-2 to 1e3 times the base's
+# and rigid, split and unsplit, mesh levels 1-2 (results/indenter_contrast.md)
+contrast: setup
+	$(PYTHON) -m studies.indenter_contrast
 
 # The model error of each coating model over h2/a x E2/E (the paper's scene, a sphere on
 # a coated cylinder) and the automatic choice on held-out scenes (about an hour and a
