@@ -7,7 +7,7 @@ studies.indenter_contrast``, ``make contrast``).
 The force is scaled with the bodies' contact modulus (1/E* = 1/E1* + 1/E3*) so that the
 contact keeps the half-width of the scene's own (about 1.5 b): only the contrast
 changes. Each scene is solved with default settings (auto's inner solve and coating
-model) and with a contact's two sides unsplit (contact_split = 1, against the default
+model) and with the sides unsplit (contact_split = bond_split = 1, against the defaults'
 4: docs/method.md, Robin parameters), at mesh levels 1 and 2 (``--levels``), from a
 cold start, one run each. A row: the Robin iterations of the final contact set (the
 linear iterations its fixed point took; 1 where it was solved directly), the contact
@@ -35,7 +35,7 @@ from studies.report import Column, Report, command_line, seconds, significant
 SCENE = SCENES_DIR / "gallery" / "near_rigid_cylinder.toml"
 # the indenter's modulus over the base's; None: rigid
 MODULI = (0.01, 0.1, 1.0, 10.0, 100.0, 1000.0, None)
-SPLITS = (4.0, 1.0)          # the default contact_split, and unsplit
+SPLITS = (4.0, 1.0)          # the default contact_split and bond_split, and unsplit
 
 
 def _plane_strain(E, nu):
@@ -66,7 +66,7 @@ def measure(modulus, level, split):
     started = time.perf_counter()
     try:
         result = orchestrate.solve(scene, replace(settings, mesh_level=level,
-                                                  contact_split=split))
+                                                  contact_split=split, bond_split=split))
     except RunFailed as failed:
         return {**row, "status": failed.summary.get("status"),
                 "time_s": time.perf_counter() - started}
@@ -99,11 +99,11 @@ def write_report(table, out, command="python -m studies.indenter_contrast"):
     report.text("The near-rigid cylinder's scene of the gallery with the indenter's modulus "
                 "E1 from a hundredth of the base's E3 to a thousand times it, and rigid; the "
                 "force scaled with the contact modulus, so that the contact keeps its "
-                "half-width. Default settings, and a contact's sides unsplit "
-                "(contact_split = 1); from a cold start on this machine, one run each.")
+                "half-width. Default settings, and the sides unsplit "
+                "(contact_split = bond_split = 1); from a cold start on this machine, one run each.")
     report.table(table, [
         Column("indenter_over_base", "E1/E3", "{}"), Column("mesh_level", "level", "{:.0f}"),
-        Column("contact_split", "contact split", "{:g}"), Column("status", "outcome"),
+        Column("contact_split", "split", "{:g}", "contact_split and bond_split"), Column("status", "outcome"),
         Column("final_set", "final set", "{:.0f}", "Robin iterations of the final contact "
                "set (1: solved directly)"),
         Column("sets", "sets", "{:.0f}", "contact sets"),
@@ -118,7 +118,7 @@ def write_report(table, out, command="python -m studies.indenter_contrast"):
             continue
         low, high = iterated.final_set.min(), iterated.final_set.max()
         report.finding(
-            f"Mesh level {level:.0f}, contact split {split:g}: over the {len(iterated)} "
+            f"Mesh level {level:.0f}, split {split:g}: over the {len(iterated)} "
             f"iterated moduli the final contact set took {low:.0f} to {high:.0f} "
             f"iterations ({significant(100 * (high / low - 1), 2)} % more at the most than "
             f"at the least; largest at E1/E3 = "

@@ -1,8 +1,9 @@
 """Iterations per contact set on the gallery's scenes, against the mesh level: what the
 Robin loop's inner solve costs where it iterates, with the coatings inside the base's
 worker (Settings.bonds "inside", the default) and exchanged across their bonds, and
-exchanged with a contact's sides unsplit (Settings.contact_split 1, against the default
-split; ``python -m studies.iterations``, ``make iterations``).
+exchanged with a contact's and a bond's sides unsplit (Settings.contact_split and
+bond_split 1, against the default split; ``python -m studies.iterations``, ``make
+iterations``).
 
 Every scene of orchestrate/scenes/gallery/ whose mesh the machine takes is solved with
 the inner solve iterated on one level (inner_solve "iterate"), in each variant,
@@ -32,7 +33,8 @@ from studies.paths import RESULTS_DIR
 from studies.report import Column, Report, command_line, seconds, significant
 
 GALLERY_DIR = SCENES_DIR / "gallery"
-# (bonds, contact_split): the default split, each way of the bonds; exchanged unsplit
+# (bonds, contact_split and bond_split): the default split, each way of the bonds;
+# exchanged unsplit
 VARIANTS = (("inside", 4.0), ("exchanged", 4.0), ("exchanged", 1.0))
 
 
@@ -49,7 +51,7 @@ def measure(path, level, bonds, split):
     try:
         result = orchestrate.solve(scene, replace(settings, mesh_level=level,
                                                   inner_solve="iterate", bonds=bonds,
-                                                  contact_split=split))
+                                                  contact_split=split, bond_split=split))
     except RunFailed as failed:
         return {**row, "status": failed.summary.get("status"),
                 "time_s": time.perf_counter() - started}
@@ -86,9 +88,10 @@ def write_report(table, out, command="python -m studies.iterations"):
                 "coatings inside the base's worker (bonds = inside; a scene whose patch is "
                 "thicker than the contact keeps them exchanged: 'inside' says which ran) "
                 "and exchanged across their bonds; and exchanged with a contact's two sides "
-                "given the neighbour rule's coefficients unsplit (contact_split = 1, "
-                "against the default's 4: docs/method.md, Robin parameters); from a cold "
-                "start on this machine, one run each.")
+                "given the neighbour rule's coefficients unsplit and a bond's split by the "
+                "coating's response alone (contact_split = bond_split = 1, against the "
+                "defaults' 4: docs/method.md, Robin parameters); from a cold start on this "
+                "machine, one run each.")
     report.table(table, [
         Column("scene", "scene"), Column("mesh_level", "level", "{:.0f}"),
         Column("variant", "variant"), Column("status", "outcome"),

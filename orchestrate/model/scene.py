@@ -87,6 +87,9 @@ KNOB_RANGES = {
     "contact_split": (1.0, 1e3, "factor", "1: one coefficient each side's neighbour "
                       "offers; far above, each side nears a Neumann or a Dirichlet "
                       "condition and the exchange stalls"),
+    "bond_split": (1.0, 1e3, "factor", "1: the split of the coating's response against "
+                   "the base's alone; far above, each side nears a Neumann or a Dirichlet "
+                   "condition and the exchange stalls"),
     "auto_direct_unknowns": (0, 10 ** 6, "interface unknowns", "0: auto probes no new "
                              "worker's map; beyond, the dense interface system of the "
                              "maps outgrows any machine"),
@@ -811,6 +814,9 @@ class Settings:
                                     # stiffer side takes its neighbour-rule gamma over
                                     # this, the softer side its own times this
                                     # (robin_parameters.py); 1: unsplit
+    bond_split: float = 4.0         # and a bond's sides, split by the coating's response
+                                    # against the base's, further by this (frictionless,
+                                    # one level); 1: that split alone
     # auto's inner solve:
     auto_direct_unknowns: int = 250  # interface unknowns: auto solves each contact set
                                     # directly while every new worker has at most this

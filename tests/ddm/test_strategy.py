@@ -72,8 +72,9 @@ REPLACED_CONSTANTS = {
 # at least 4 times as stiff as its neighbour (the figures' scenes, solved directly,
 # hold every side as before). contact_split 4: a frictionless contact's sides split about
 # the neighbour rule on one level (robin_parameters.py; the figures' scenes, solved
-# directly, keep the rule's gamma).
-ADDED_KNOBS = {"hold_contrast": 4.0, "auto_fallback_work": 1e9, "contact_split": 4.0}
+# directly, keep the rule's gamma). bond_split 4: a bond's split widened as much.
+ADDED_KNOBS = {"hold_contrast": 4.0, "auto_fallback_work": 1e9, "contact_split": 4.0,
+               "bond_split": 4.0}
 INTEGER_KNOBS = [key for key, value in REPLACED_CONSTANTS.items() if isinstance(value, int)]
 
 
@@ -203,8 +204,9 @@ def test_the_plan_resolves_the_strategy_from_the_settings(values, planned, gamma
     ratio = (scene.base.E / (1 - scene.base.nu ** 2)) / (
         coating.E / (1 - coating.nu ** 2) * min(1.0, math.pi * coating.thickness / a))
     one_level = planned not in (DIRECT, TWO_LEVEL)
-    split = math.sqrt(min(max(ratio, 1.0), 256.0)) if one_level else 1.0
-    assert not one_level or split > 1    # the paper's coating is thin
+    # and further by bond_split 4 (frictionless)
+    split = 4.0 * math.sqrt(min(max(ratio, 1.0), 256.0)) if one_level else 1.0
+    assert not one_level or ratio > 1    # the paper's coating is thin
     # a contact's sides split by 4 about gamma on one level, the indenter's the smaller:
     # the bodies are equal (Settings.contact_split)
     contact_split = 4.0 if one_level else 1.0
@@ -587,6 +589,31 @@ def test_a_contacts_sides_are_split_about_the_neighbour_rule():
     assert _contact_gammas(gallery / "tin_on_steel.toml", contact_split=1.0) == (1.0, 1.0)
     assert _contact_gammas(gallery / "tin_on_steel.toml", contact_split=8.0) == \
         pytest.approx((0.125, 8.0))
+
+
+def test_a_bonds_sides_split_further_without_friction():
+    """A bond's split by the coating's response against the base's (bond_ratio r) is
+    widened by bond_split where r > 1 and the scene has no friction."""
+    def bond_split(path, **values):
+        scene, _ = scene_and_settings(path)
+        plan = prepare(scene, Settings(inner_solve="iterate", **values))
+        coating, base = [side for side in plan.strategy.sides
+                         if side.interface.startswith("bond")][:2]
+        return coating.gamma / coating.direct_gamma, base.gamma / base.direct_gamma
+
+    tin = SCENES_DIR / "gallery" / "tin_on_steel.toml"
+    plain = bond_split(tin, bond_split=1.0)
+    assert plain[0] > 1 and plain[0] * plain[1] == pytest.approx(1.0)
+    assert bond_split(tin) == pytest.approx((4 * plain[0], plain[1] / 4))
+    # a coating stiffer than the base at the contact's scale (r = 1): unsplit
+    near_rigid = SCENES_DIR / "gallery" / "near_rigid_cylinder.toml"
+    assert bond_split(near_rigid, bonds="exchanged") == pytest.approx((1.0, 1.0))
+    # under friction, r's split alone
+    scene, _ = scene_and_settings(SCENES_DIR / "partial_slip.toml")
+    assert scene.coatings
+    frictional = bond_split(SCENES_DIR / "partial_slip.toml")
+    assert frictional == pytest.approx(bond_split(SCENES_DIR / "partial_slip.toml",
+                                                  bond_split=1.0))
 
 
 def test_a_stalled_iteration_falls_back_only_where_the_maps_are_affordable():
