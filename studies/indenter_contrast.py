@@ -120,8 +120,8 @@ def write_report(table, out, command="python -m studies.indenter_contrast"):
         report.finding(
             f"Mesh level {level:.0f}, split {split:g}: over the {len(iterated)} "
             f"iterated moduli the final contact set took {low:.0f} to {high:.0f} "
-            f"iterations ({significant(100 * (high / low - 1), 2)} % more at the most than "
-            f"at the least; largest at E1/E3 = "
+            f"iterations (the most {significant(high / low, 2)} times the least; largest at "
+            f"E1/E3 = "
             f"{iterated.loc[iterated.final_set.idxmax(), 'indenter_over_base']}); all "
             f"iterations {iterated.iterations.min():.0f} to {iterated.iterations.max():.0f}, "
             f"time {significant(iterated.time_s.min())} to "

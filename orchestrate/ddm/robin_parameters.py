@@ -74,10 +74,9 @@ BOND_RATIO_LIMIT = 256.0
 # the smaller coefficient (thin hard coatings: 28-33 iterations; the other way round,
 # 34-39). Measured on the gallery at mesh level 1: a split of 4 cut every iterated
 # scene's final set or left it within one, 8 and 16 no better (results/iterations.md
-# has the counts with and without). Under friction the
-# contact's normal exchange steers the slip, and splitting it slowed partial slip
-# (63 -> 154 iterations); under a coarse level, whose sides are held, it slowed the
-# loop (TiN at mesh level 2: 28 -> 47).
+# has the counts with and without). Under friction the contact's normal exchange steers
+# the slip, and splitting it slowed partial slip (63 -> 154 iterations); under a coarse
+# level, whose sides are held, it slowed the loop (TiN at mesh level 2: 28 -> 47).
 CONTACT_TIE = 1.5
 
 
@@ -128,6 +127,11 @@ def plane_strain_modulus(subdomain):
     return subdomain.E / (1.0 - subdomain.nu ** 2)
 
 
+def _patch(problem, coating):
+    """The scene's patch of the subdomain named ``coating`` (coatingN: the N-th)."""
+    return problem.scene.coatings[int(coating[len("coating"):]) - 1]
+
+
 def face_stiffness(problem, name):
     """The E* the contact meets on subdomain ``name``'s face at the contact's scale: a
     coating's layered with its base's, the coating's where it is thick against the
@@ -141,8 +145,7 @@ def face_stiffness(problem, name):
     a = contact_half_width(problem.scene)
     if not a > 0:
         return base
-    patch = problem.scene.coatings[int(name[len("coating"):]) - 1]
-    w = math.exp(-2.0 * math.pi * patch.thickness / a)
+    w = math.exp(-2.0 * math.pi * _patch(problem, name).thickness / a)
     return 1.0 / ((1.0 - w) / plane_strain_modulus(sub) + w / base)
 
 
@@ -162,9 +165,8 @@ def bond_ratio(problem, coating):
     a = contact_half_width(scene)
     if not a > 0:
         return 1.0
-    patch = scene.coatings[int(coating[len("coating"):]) - 1]
     base = subdomains[_base(problem)]
-    thin = min(1.0, math.pi * patch.thickness / a)
+    thin = min(1.0, math.pi * _patch(problem, coating).thickness / a)
     ratio = plane_strain_modulus(base) / (plane_strain_modulus(subdomains[coating]) * thin)
     return min(max(ratio, 1.0), BOND_RATIO_LIMIT)
 
