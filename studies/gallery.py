@@ -17,6 +17,7 @@ Writes results/gallery.csv and results/gallery.md.
 """
 
 import argparse
+from dataclasses import replace
 import math
 import os
 import sys
@@ -97,15 +98,18 @@ def _difference(loop, reference):
     return abs(loop / reference - 1.0)
 
 
-def measure(path, progress=print):
-    """One scene's row."""
+def measure(path, progress=print, mesh_level=None):
+    """One scene's row; ``mesh_level``: the scene's own (its file's settings) if None."""
     scene, settings = scene_and_settings(path)
+    if mesh_level is not None:
+        settings = replace(settings, mesh_level=mesh_level)
     plan = prepare(scene, settings)
-    row = {"scene": path.stem, **_describe(scene, plan.problem.scene),
+    row = {"scene": path.stem, "mesh_level": settings.mesh_level,
+           **_describe(scene, plan.problem.scene),
            "models": ", ".join(sorted({c.model for c in plan.scene.coatings}))}
     started = time.perf_counter()
     try:
-        result = orchestrate.solve(path)
+        result = orchestrate.solve(scene, settings)
     except RunFailed as failed:
         row.update(converged=False, status=failed.summary.get("status"),
                    time_s=time.perf_counter() - started,
@@ -139,8 +143,8 @@ def measure(path, progress=print):
     return row
 
 
-def study(out, names=None, progress=print):
-    rows = [measure(path, progress) for path in gallery_files(names)]
+def study(out, names=None, progress=print, mesh_level=None):
+    rows = [measure(path, progress, mesh_level) for path in gallery_files(names)]
     table = pd.DataFrame(rows)
     os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
     table.to_csv(out, index=False)
@@ -157,7 +161,9 @@ DIFFERENCES = {"peak_pressure_difference": "peak pressure",
 def write_report(table, out, command="python -m studies.gallery"):
     report = Report("The gallery: engineers' scenes against the monolithic solve", command,
                     data=[os.path.basename(os.path.splitext(out)[0]) + ".csv"])
+    levels = sorted(set(table.mesh_level)) if "mesh_level" in table else [1]
     report.text("Each scene of orchestrate/scenes/gallery/ solved with default settings "
+                f"(mesh level {', '.join(str(int(level)) for level in levels)}) "
                 "by the Robin loop, and by the monolithic solve of the same discrete "
                 "problem (same mesh, interface points and coating models), each from a "
                 "cold start on this machine; one run each.")
@@ -221,9 +227,12 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", default=str(RESULTS_DIR / "gallery.csv"),
                         help="the table; the report goes beside it (gallery.md)")
+    parser.add_argument("--mesh-level", type=int, default=None,
+                        help="every scene at this mesh level (default: each file's own)")
     parser.add_argument("names", nargs="*", help="scenes of the gallery (default: all)")
     args = parser.parse_args(argv)
-    table = study(args.out, args.names, progress=lambda text: print(text, file=sys.stderr))
+    table = study(args.out, args.names, progress=lambda text: print(text, file=sys.stderr),
+                  mesh_level=args.mesh_level)
     with pd.option_context("display.width", 250, "display.max_columns", 40):
         print(table.to_string(index=False))
     print(args.out)
