@@ -205,7 +205,7 @@ def test_the_plan_resolves_the_strategy_from_the_settings(values, planned, gamma
         coating.E / (1 - coating.nu ** 2) * min(1.0, math.pi * coating.thickness / a))
     one_level = planned not in (DIRECT, TWO_LEVEL)
     # and further by bond_split 4 (frictionless)
-    split = 4.0 * math.sqrt(min(max(ratio, 1.0), 256.0)) if one_level else 1.0
+    split = min(4.0 * math.sqrt(min(max(ratio, 1.0), 256.0)), 16.0) if one_level else 1.0
     assert not one_level or ratio > 1    # the paper's coating is thin
     # a contact's sides split by 4 about gamma on one level, the indenter's the smaller:
     # the bodies are equal (Settings.contact_split)
@@ -593,7 +593,8 @@ def test_a_contacts_sides_are_split_about_the_neighbour_rule():
 
 def test_a_bonds_sides_split_further_without_friction():
     """A bond's split by the coating's response against the base's (bond_ratio r) is
-    widened by bond_split where r > 1 and the scene has no friction."""
+    widened by bond_split where r > 1 and the scene has no friction, up to the limit of
+    r's own split (sqrt(BOND_RATIO_LIMIT), 16, on each side)."""
     def bond_split(path, **values):
         scene, _ = scene_and_settings(path)
         plan = prepare(scene, Settings(inner_solve="iterate", **values))
@@ -605,6 +606,9 @@ def test_a_bonds_sides_split_further_without_friction():
     plain = bond_split(tin, bond_split=1.0)
     assert plain[0] > 1 and plain[0] * plain[1] == pytest.approx(1.0)
     assert bond_split(tin) == pytest.approx((4 * plain[0], plain[1] / 4))
+    # a 1 um film (r at its limit 256): sqrt(256) = 16 at the most
+    dlc = bond_split(SCENES_DIR / "gallery" / "dlc_on_large_steel_part.toml")
+    assert dlc == pytest.approx((16.0, 1 / 16.0))
     # a coating stiffer than the base at the contact's scale (r = 1): unsplit
     near_rigid = SCENES_DIR / "gallery" / "near_rigid_cylinder.toml"
     assert bond_split(near_rigid, bonds="exchanged") == pytest.approx((1.0, 1.0))
