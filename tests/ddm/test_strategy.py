@@ -591,6 +591,22 @@ def test_a_contacts_sides_are_split_about_the_neighbour_rule():
         pytest.approx((0.125, 8.0))
 
 
+@pytest.mark.slow
+def test_a_split_loop_updates_its_set_once_the_tractions_begin_to_settle(tmp_path):
+    """The paper's scene iterated on one level at mesh level 3 (sides split): updated on
+    the displacements' change alone, its contact set walked through 18 sets (226
+    iterations); waiting for the tractions' change to fall within LAGGING_TRACTIONS times
+    the update tolerance, 3 updates. Its answer is the two-level run's."""
+    iterated = solve(paper_scene(), Settings(mesh_level=3, inner_solve="iterate"),
+                     tmp_path / "iterated")
+    assert iterated["converged"] and iterated["active_set_changes"] <= 4
+    assert iterated["strategy"]["sides"][0]["gamma"] != iterated["strategy"]["gamma"]["value"]
+    two_levels = solve(paper_scene(), Settings(mesh_level=3), tmp_path / "two_levels")
+    assert two_levels["inner_solve_used"] == "two-level"
+    assert iterated["peak_contact_stress"] == pytest.approx(two_levels["peak_contact_stress"],
+                                                            rel=1e-5)
+
+
 def test_a_bonds_sides_split_further_without_friction():
     """A bond's split by the coating's response against the base's (bond_ratio r) is
     widened by bond_split where r > 1 and the scene has no friction, up to the limit of
