@@ -92,7 +92,8 @@ _SETTINGS_HELP = {
                   "the coating's response against the base's further by this factor",
     "auto_direct_unknowns": "auto solves directly while every new worker has at most this "
                             "many interface unknowns, weighted by its dofs over the largest "
-                            "worker's",
+                            "worker's; on a finer mesh it takes two levels only where the "
+                            "coarse level's workers have at most as many",
     "auto_two_level_mesh_level": "auto iterates with two levels from this mesh level up",
     "auto_fallback_work": "a stalled iteration auto chose falls back to the direct solve "
                           "only where probing the maps costs at most this many "

@@ -265,10 +265,10 @@ def _bonds_inside(settings, problem, inner_solve, half_width):
     if settings.bonds == "auto" and not contrast_exceeds(problem, settings.robin_sides,
                                                          settings.hold_contrast):
         return False
-    return inner_solve.planned == ITERATE or not _maps_would_pay(problem, settings)
+    return inner_solve.planned == ITERATE or not maps_would_pay(problem, settings)
 
 
-def _maps_would_pay(problem, settings):
+def maps_would_pay(problem, settings):
     """Subdomains._maps_pay before any worker started, every worker new: each one's
     interface unknowns weighted by its estimated dofs over the largest's, against
     auto_direct_unknowns."""

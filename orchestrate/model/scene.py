@@ -821,7 +821,9 @@ class Settings:
     auto_direct_unknowns: int = 250  # interface unknowns: auto solves each contact set
                                     # directly while every new worker has at most this
                                     # many, weighted by its dofs over the largest worker's
-                                    # (probing costs a back-substitution per unknown)
+                                    # (probing costs a back-substitution per unknown);
+                                    # on a finer mesh, two levels only where the coarse
+                                    # level's workers have at most as many (run/plan.py)
     auto_two_level_mesh_level: int = 2  # auto iterates with two levels from this mesh
                                     # level up (there probing maps costs more)
     auto_fallback_work: float = 1e9  # dof-columns: an iteration auto chose that stalls

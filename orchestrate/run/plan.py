@@ -22,14 +22,22 @@ On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse lev
 - where a coating is more than hold_contrast times softer than its base: there one level
   took fewer iterations per contact set than two (the gallery's polymer coating at mesh
   level 2: 19 against 128, 2.2 s against 13.9 s; the paper's scene under coatings of
-  E/10 and E/30: 15-21 against 19-38).
+  E/10 and E/30: 15-21 against 19-38);
+- where the coarse level's maps would not pay, by the measure auto applies to a direct
+  solve on that mesh (strategy.maps_would_pay, auto_direct_unknowns): probing them cost
+  more than the iterations they save. Measured at mesh level 2 with the sides split on
+  one level: the gallery's coated roller 6.8 s with two levels against 3.3 s with one,
+  TiN 5.0 against 2.0 s, the thick ceramic 18.1 against 8.3 s, the anodised aluminium
+  3.7 against 1.8 s; where the maps pay (the paper's scenes, the patches over a bare
+  base) two levels were as fast or faster (the paper's scene at mesh level 3: 3.2 s
+  against 3.8 s).
 """
 
 from dataclasses import dataclass, replace
 
 from orchestrate.ddm.coarse import coarse_settings
 from orchestrate.ddm.robin_parameters import contrast_exceeds, soft_coating
-from orchestrate.ddm.strategy import DIRECT, plan_strategy
+from orchestrate.ddm.strategy import DIRECT, maps_would_pay, plan_strategy
 from orchestrate.errors import ParameterError
 from orchestrate.mesh.discretization import discretize
 from orchestrate.mesh.problem_size import check_direct_size, check_size, estimated_dofs
@@ -120,8 +128,8 @@ def model_choice(scene, settings):
 
 
 def _coarse_left_out(problem, settings):
-    """Why auto leaves out the coarse level the mesh level would take (the module's
-    text), or None."""
+    """Why auto leaves out the coarse level the mesh level would take, judged on the fine
+    problem (the module's text), or None."""
     if settings.inner_solve != AUTO or not settings.two_levels:
         return None
     contrast = f"hold_contrast {settings.hold_contrast:g}"
@@ -135,20 +143,33 @@ def _coarse_left_out(problem, settings):
     return None
 
 
+def _coarse_maps_left_out(coarse, settings):
+    """Why auto leaves out the coarse level whose problem is ``coarse`` (its maps would
+    not pay: the module's text), or None."""
+    if settings.inner_solve != AUTO or maps_would_pay(coarse, settings):
+        return None
+    return (f"the coarse level's maps would not pay: some worker's interface unknowns on "
+            f"its mesh, weighted by its dofs, above auto_direct_unknowns "
+            f"{settings.auto_direct_unknowns}")
+
+
 def prepare(scene, settings):
     """Everything checked and decided before any work (a Plan). ParameterError for
     settings the scene cannot take or a problem too large."""
     solved, model_choice, scales, settings, a, predicted = _decided_models(scene, settings)
     problem = discretize(solved, settings)
-    left_out = _coarse_left_out(problem, settings)
     # one level, its gamma, where the coarse level would not help (left_out), or has no
     # frictional solve (strategy._inner_solve)
-    if left_out or (settings.inner_solve == AUTO and settings.two_levels
-                    and scene.frictional):
+    frictional = settings.inner_solve == AUTO and settings.two_levels and scene.frictional
+    left_out, coarse = _coarse_left_out(problem, settings), None
+    if left_out is None and settings.two_levels and not frictional:
+        coarse = discretize(solved, coarse_settings(settings))
+        left_out = _coarse_maps_left_out(coarse, settings)
+    if left_out or frictional:
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
         problem = discretize(solved, settings)
     check_size(problem)
-    coarse = discretize(solved, coarse_settings(settings)) if settings.two_levels else None
+    coarse = coarse if settings.two_levels else None
     strategy = plan_strategy(settings, problem, coarse, predicted, left_out)
     if strategy.inner_solve.planned == DIRECT:     # asked: its dense system must fit
         check_direct_size(problem)

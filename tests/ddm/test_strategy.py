@@ -536,6 +536,31 @@ def test_auto_leaves_the_coarse_level_out_under_contrast():
     assert asked.inner_solve.planned == TWO_LEVEL          # asked, it is kept
 
 
+def test_auto_leaves_the_coarse_level_out_where_its_maps_would_not_pay():
+    """At mesh level 2 auto takes two levels only where probing the coarse level's maps
+    would pay by the measure it applies to a direct solve (auto_direct_unknowns): the
+    paper's scene and the patches over a bare base (two levels as fast or faster), not
+    the gallery's large coated bodies (one level, with its split sides, took half the
+    time: the coated roller 3.3 s against 6.8 s)."""
+    assert prepare(paper_scene(), Settings(mesh_level=2)).strategy.two_levels
+    patches, _ = scene_and_settings(SCENES_DIR / "gallery" / "patches_and_bare_base.toml")
+    assert prepare(patches, Settings(mesh_level=2)).strategy.two_levels
+    for name in ("coated_roller", "tin_on_steel", "thick_ceramic_on_steel",
+                 "steel_on_anodised_aluminium"):
+        scene, _ = scene_and_settings(SCENES_DIR / "gallery" / f"{name}.toml")
+        plan = prepare(scene, Settings(mesh_level=2))
+        assert not plan.strategy.two_levels and plan.coarse is None, name
+        assert "the coarse level's maps would not pay" in plan.strategy.inner_solve.rule
+        # its sides split, as on one level
+        assert any(side.gamma != side.direct_gamma for side in plan.strategy.sides), name
+        # asked, two levels are kept
+        asked = prepare(scene, Settings(mesh_level=2, inner_solve="two-level")).strategy
+        assert asked.inner_solve.planned == TWO_LEVEL, name
+    # a larger auto_direct_unknowns makes the coarse maps pay
+    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "tin_on_steel.toml")
+    assert prepare(scene, Settings(mesh_level=2, auto_direct_unknowns=1000)).strategy.two_levels
+
+
 def test_auto_leaves_the_coarse_level_out_under_a_soft_coating():
     """At mesh level 2 a coating more than hold_contrast times softer than its base (E*)
     iterates on one level: the gallery's polymer coating (E/100) took 128 iterations in
@@ -645,8 +670,10 @@ def test_a_stalled_iteration_falls_back_only_where_the_maps_are_affordable():
     scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "coated_roller.toml",
                                   {"coating.model": "elastic"})
     big = prepare(scene, Settings(mesh_level=2)).strategy.inner_solve
-    assert big.planned == TWO_LEVEL and big.fallback is None
+    # one level there: its coarse level's maps would not pay either (plan.py)
+    assert big.planned == DIRECT_OR_ITERATE and big.fallback is None
     assert "no direct fallback" in big.rule and "auto_fallback_work" in big.rule
+    assert "the coarse level's maps would not pay" in big.rule
     small = prepare(paper_scene(model="elastic"), Settings(mesh_level=2)).strategy.inner_solve
     assert small.fallback == DIRECT and "no direct fallback" not in small.rule
     none = prepare(paper_scene(model="elastic"),
