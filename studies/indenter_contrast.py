@@ -21,14 +21,12 @@ import argparse
 from dataclasses import replace
 import os
 import sys
-import time
 
 import pandas as pd
 
-import orchestrate
 from orchestrate.model import scene_and_settings
 from orchestrate.paths import SCENES_DIR
-from orchestrate.run import RunFailed
+from studies.iterations import counted_run
 from studies.paths import RESULTS_DIR
 from studies.report import Column, Report, command_line, seconds, significant
 
@@ -63,19 +61,8 @@ def measure(modulus, level, split):
     scene, settings = scene_with(modulus)
     row = {"indenter_over_base": "rigid" if modulus is None else modulus, "mesh_level": level,
            "contact_split": split}
-    started = time.perf_counter()
-    try:
-        result = orchestrate.solve(scene, replace(settings, mesh_level=level,
-                                                  contact_split=split, bond_split=split))
-    except RunFailed as failed:
-        return {**row, "status": failed.summary.get("status"),
-                "time_s": time.perf_counter() - started}
-    per_set = result.history.groupby("active_set_update").size().tolist()
-    summary = result.summary
-    return {**row, "status": "converged", "time_s": time.perf_counter() - started,
-            "final_set": per_set[-1], "sets": len(per_set),
-            "iterations": summary["iterations"], "inner_solve": summary["inner_solve_used"],
-            "unknowns": sum(summary["dofs"].values())}
+    return {**row, **counted_run(scene, replace(settings, mesh_level=level,
+                                                contact_split=split, bond_split=split))}
 
 
 def study(out, levels=(1, 2), progress=print):

@@ -42,27 +42,35 @@ def _variant(bonds, split):
     return bonds if split == VARIANTS[0][1] else f"{bonds}, unsplit"
 
 
+def counted_run(scene, settings):
+    """A run's row of counts: status, time to answer, and where it converged the final
+    contact set's iterations, the most of any set, the sets, all iterations, the inner
+    solve used, the unknowns and whether its bonds ran inside a worker. A mesh the
+    machine does not take is a row too ("refused: KEY")."""
+    started = time.perf_counter()
+    try:
+        result = orchestrate.solve(scene, settings)
+    except RunFailed as failed:
+        return {"status": failed.summary.get("status"), "time_s": time.perf_counter() - started}
+    except ParameterError as refused:
+        return {"status": f"refused: {refused.key}"}
+    per_set = result.history.groupby("active_set_update").size().tolist()
+    summary = result.summary
+    return {"status": "converged", "time_s": time.perf_counter() - started,
+            "final_set": per_set[-1], "largest_set": max(per_set), "sets": len(per_set),
+            "iterations": summary["iterations"], "inner_solve": summary["inner_solve_used"],
+            "unknowns": sum(summary["dofs"].values()),
+            "inside": bool(summary["strategy"]["bonds_inside"])}
+
+
 def measure(path, level, bonds, split):
     """One scene's run at one mesh level, one variant: its row."""
     scene, settings = scene_and_settings(path)
     row = {"scene": path.stem, "mesh_level": level, "bonds": bonds, "contact_split": split,
            "variant": _variant(bonds, split)}
-    started = time.perf_counter()
-    try:
-        result = orchestrate.solve(scene, replace(settings, mesh_level=level,
-                                                  inner_solve="iterate", bonds=bonds,
-                                                  contact_split=split, bond_split=split))
-    except RunFailed as failed:
-        return {**row, "status": failed.summary.get("status"),
-                "time_s": time.perf_counter() - started}
-    except ParameterError as refused:       # a mesh the machine does not take
-        return {**row, "status": f"refused: {refused.key}"}
-    per_set = result.history.groupby("active_set_update").size().tolist()
-    summary = result.summary
-    return {**row, "status": "converged", "time_s": time.perf_counter() - started,
-            "final_set": per_set[-1], "largest_set": max(per_set), "sets": len(per_set),
-            "iterations": summary["iterations"], "unknowns": sum(summary["dofs"].values()),
-            "inside": bool(summary["strategy"]["bonds_inside"])}
+    return {**row, **counted_run(scene, replace(settings, mesh_level=level,
+                                                inner_solve="iterate", bonds=bonds,
+                                                contact_split=split, bond_split=split))}
 
 
 def study(out, names=None, levels=(1, 2, 3), progress=print):

@@ -714,6 +714,7 @@ class _ActiveSetLoop(_Loop):
             states = predicted_friction_states(self.problem, layout, self.strategy.first_contact)
         psi = np.concatenate([psi, states])
         previous_psi, update, seen, cycled = None, 0, {psi.tobytes()}, False
+        tractions_lag = self.split_tractions_lag()
         tolerance = max(eps, knobs.predicted_set_tolerance if predicted
                         else knobs.active_set_tolerance)
         for iteration in range(1, knobs.max_iterations + 1):
@@ -757,7 +758,7 @@ class _ActiveSetLoop(_Loop):
             # displacements' estimated error (a slow contraction's change hides its
             # distance: a rigid stamp's sets cycled on changes of 1e-5, errors of 0.1)
             inexact = max(change[:2]) if cycled else change[0]
-            if not cycled and self.split_tractions_lag:
+            if not cycled and tractions_lag:
                 inexact = max(inexact, change[1] / LAGGING_TRACTIONS)
             if cycled:
                 inexact = max(inexact, displacement_error)
@@ -797,7 +798,6 @@ class _ActiveSetLoop(_Loop):
                 x = x_next
         raise AssertionError("the monitor stops at max_iterations")
 
-    @property
     def split_tractions_lag(self):
         """Whether some side's gamma is split (robin_parameters: contact_split, bond_split)
         and no side has a stiff neighbour, so that a set's update waits for its tractions
