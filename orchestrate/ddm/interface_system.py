@@ -20,6 +20,7 @@ then semi-smooth Newton steps with an exact Jacobian.
 """
 
 import numpy as np
+from scipy.linalg import lu_factor, lu_solve
 
 
 class InterfaceSystem:
@@ -112,8 +113,9 @@ class InterfaceSystem:
         S, s0 = self.state_matrix(coefficients["alpha"])
         system = np.eye(self.size) - self._times_laws(coefficients, S)
         right = self._times_laws(coefficients, s0) + h
-        g = np.linalg.solve(system, right)
-        correction = np.linalg.solve(system, right - system @ g)
+        factors = lu_factor(system)                 # factorised once, solved twice
+        g = lu_solve(factors, right)
+        correction = lu_solve(factors, right - system @ g)
         return self.finish(S @ g + s0), self.finish(S @ (g + correction) + s0)
 
 
