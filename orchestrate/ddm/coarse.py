@@ -14,7 +14,13 @@ coarse), it serves twice:
   r + P ((I - B_c)^-1 - I) R r, and Anderson acceleration drives x to the fixed point
   of x + (that), the fine loop's own. B_c is the coarse model of the fine loop's whole
   iteration: its groups of subdomains (Problem.sweep) one after the other, each group's
-  rows of the state taken from A_c, the others kept.
+  rows of the state taken from A_c, the others kept. Where the fine loop solves a base
+  and its coatings as one worker (Strategy.bonds_inside), all its workers at once, B_c
+  is that iteration: the contacts' data from the state before, the bonds' from the
+  state after (their exchange converged: the worker's penalty), B_c =
+  (I - S_b L_b)^-1 S_c L_c with A_c = S_c L_c + S_b L_b split by the data of contacts
+  and bonds, so that (I - B_c)^-1 = (I - A_c)^-1 (I - S_b L_b): the coarse workers stay
+  one per subdomain, their maps combined here.
 
 The coarse level's workers start before the fine ones and probe while the fine run meshes
 and starts (orchestrate/run/coarse_level.py); they stop once their maps are read.
@@ -74,15 +80,23 @@ def paired(fine, coarse):
 
 class CoarseCorrection:
     """``newton_steps``: the coarse contact problem's semi-smooth Newton steps at most
-    (LoopKnobs.coarse_newton_steps)."""
+    (LoopKnobs.coarse_newton_steps); ``inside``: the interfaces of the bonds the fine
+    loop solves inside a worker (Strategy.bonds_inside; the module's note)."""
 
-    def __init__(self, layout, coarse, coarse_layout, system, newton_steps):
+    def __init__(self, layout, coarse, coarse_layout, system, newton_steps, inside=()):
         self.layout, self.coarse, self.coarse_layout, self.system = (layout, coarse,
                                                                      coarse_layout, system)
         self.newton_steps = newton_steps
         self.prolong = _interpolation(coarse_layout, layout)     # P: coarse -> fine
         self.restrict = _interpolation(layout, coarse_layout)    # R: fine -> coarse
         self._groups = [_rows_of(coarse, coarse_layout, group) for group in coarse.sweep]
+        self._bond_data = None          # the data entries of the bonds inside, if any
+        self._laws = None
+        if inside:
+            self._bond_data = np.zeros(system.size, dtype=bool)
+            for i in inside:
+                for side in (0, 1):
+                    self._bond_data[coarse_layout.slices["u", i, side]] = True
         self._psi = None
 
     def laws(self, psi):
@@ -106,10 +120,16 @@ class CoarseCorrection:
         if self._psi is None or not np.array_equal(psi, self._psi):
             self._set_contact(psi)
         coarse = self.restrict @ residual
-        # (I - B_c)^-1 - I applied by the LU factors of I - B_c: a solve per residual,
-        # where forming (I - B_c)^-1 B_c took as many as its columns (TiN at mesh level 2:
-        # 2.1 s of the loop's 8.9 s)
-        return self.prolong @ (lu_solve(self._factors, coarse) - coarse)
+        # by LU factors, a solve per residual (forming (I - B_c)^-1 B_c took as many as
+        # its columns: TiN at mesh level 2, 2.1 s of the loop's 8.9 s)
+        if self._laws is None:
+            return self.prolong @ (lu_solve(self._factors, coarse) - coarse)
+        step = (coarse if self._bond_data is None
+                else coarse - self._bond_states @ (self._bond_laws @ coarse))
+        # (I - S L)^-1 = I + S (I - L S)^-1 L: a factorisation of the data's size, half
+        # the state's
+        inverse = step + self._states @ lu_solve(self._factors, self._laws @ step)
+        return self.prolong @ (inverse - coarse)
 
     def _set_contact(self, psi):
         coarse_psi = np.empty(self.coarse_layout.gap.size)
@@ -121,10 +141,19 @@ class CoarseCorrection:
             coarse_psi[coarse] = psi[fine][nearest]
         L, _, alpha = self.system.laws_matrix(self.laws(coarse_psi))
         S, _ = self.system.state_matrix(alpha)
-        # L has a few entries per row: S L as dense times sparse (4 n^3 flops dense)
-        one_iteration = _sweep_matrix(np.asarray(S @ csr_matrix(L)), self._groups)
+        L = csr_matrix(L)           # a few entries per row
         self._psi = psi.copy()
-        self._factors = lu_factor(np.eye(len(one_iteration)) - one_iteration)
+        self._laws = None
+        if self._bond_data is None and len(self._groups) > 1:
+            one_iteration = _sweep_matrix(np.asarray(S @ L), self._groups)
+            self._factors = lu_factor(np.eye(len(one_iteration)) - one_iteration)
+            return
+        # one group (all workers at once): B_c = A_c = S L, or with bonds inside B_c's
+        # inverse through A_c's (the module's note)
+        self._states, self._laws = S, L
+        if self._bond_data is not None:
+            self._bond_states, self._bond_laws = S[:, self._bond_data], L[self._bond_data]
+        self._factors = lu_factor(np.eye(L.shape[0]) - np.asarray(L @ S))
 
 
 def _rows_of(problem, layout, names):
@@ -153,15 +182,24 @@ def _sweep_matrix(A, groups):
 
 def _interpolation(source, target):
     """The matrix taking a state of layout ``source`` to one of layout ``target``: every
-    block (trace or traction of a side, per component) linearly along s."""
-    matrix = np.zeros((target.size, source.size))
+    block (trace or traction of a side, per component) linearly along s (as np.interp:
+    constant beyond the ends), two entries per row."""
+    rows, columns, values = [], [], []
     for key, into in target.slices.items():
         _, i, _ = key
         start, to = source.slices[key].start, into.start
         s_from, s_to = source.interfaces[i].s, target.interfaces[i].s
-        weights = np.array([np.interp(s_to, s_from, unit) for unit in np.eye(len(s_from))]).T
+        if len(s_from) == 1:
+            left, weight = np.zeros(len(s_to), dtype=int), np.zeros(len(s_to))
+        else:
+            left = np.clip(np.searchsorted(s_from, s_to, side="right") - 1, 0, len(s_from) - 2)
+            weight = np.clip((s_to - s_from[left]) / (s_from[left + 1] - s_from[left]), 0.0, 1.0)
+        right = np.minimum(left + 1, len(s_from) - 1)
         for c in range(target.interfaces[i].components):
-            rows = slice(to + c * len(s_to), to + (c + 1) * len(s_to))
-            columns = slice(start + c * len(s_from), start + (c + 1) * len(s_from))
-            matrix[rows, columns] = weights
-    return csr_matrix(matrix)         # two entries per row: applied once per iteration
+            row = to + c * len(s_to) + np.arange(len(s_to))
+            first = start + c * len(s_from)
+            rows += [row, row]
+            columns += [first + left, first + right]
+            values += [1.0 - weight, weight]
+    return csr_matrix((np.concatenate(values), (np.concatenate(rows), np.concatenate(columns))),
+                      shape=(target.size, source.size))

@@ -54,15 +54,17 @@ class CoarseLevel:
         return robin_data(layout, layout.zeros(),
                           coarse_laws(self.coarse, layout, np.zeros(layout.gap.size)))
 
-    def correction(self):
-        """The CoarseCorrection from the probed maps; the coarse workers stop."""
+    def correction(self, inside=()):
+        """The CoarseCorrection from the probed maps, for a fine loop that solves the
+        bonds ``inside`` in a worker (Strategy.bonds_inside); the coarse workers stop."""
         try:
             maps = self.workers.robin_maps(self._data())
         finally:
             self.close()
         sides = {name: self.coarse.sides_of(name) for name in maps}
         return CoarseCorrection(self.fine_layout, self.coarse, self.layout,
-                                InterfaceSystem(self.layout, sides, maps), self.newton_steps)
+                                InterfaceSystem(self.layout, sides, maps), self.newton_steps,
+                                inside)
 
     def close(self):
         """Stop the coarse workers (those still probing are killed) and remove their

@@ -226,7 +226,7 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
             checkpoint("setup")
             coarse = None
             if coarse_level is not None:        # a fine mesh: iterated with two levels
-                coarse = coarse_level.correction()
+                coarse = coarse_level.correction(strategy.bonds_inside)
                 coarse_level.close()
             # a coarse level solves this very scene's contact problem: a better start than
             # a neighbour's answer (fewer contact sets: measured 1-2 against 0-9 at level 3)
