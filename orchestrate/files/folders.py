@@ -206,10 +206,14 @@ def release_lock(handle):
 class WorkFolder:
     """A run's private working folder under ``tempfile.gettempdir()``: ``robin-*`` for
     its workers, ``orchestrate-api-*`` for a run of the Python API (orchestrate/run/api.py:
-    the run's folder, until the run ends)."""
+    the run's folder, until the run ends), ``monolithic-*`` for a monolithic solve
+    (orchestrate/run/monolithic.py). A folder whose process died is removed by the next
+    one made (remove_dead_work_folders)."""
 
     PREFIX = "robin-"
     API_PREFIX = "orchestrate-api-"
+    MONOLITHIC_PREFIX = "monolithic-"
+    PREFIXES = (PREFIX, API_PREFIX, MONOLITHIC_PREFIX)
     LOCK = ".alive"
 
     def __init__(self, prefix=PREFIX):
@@ -245,7 +249,7 @@ def remove_dead_work_folders(directory=None):
     locking it) once older than YOUNG_SECONDS."""
     directory = Path(directory or tempfile.gettempdir())
     try:
-        candidates = [folder for prefix in (WorkFolder.PREFIX, WorkFolder.API_PREFIX)
+        candidates = [folder for prefix in WorkFolder.PREFIXES
                       for folder in directory.glob(f"{prefix}*")]
     except OSError:
         return

@@ -7,10 +7,10 @@ correctness."""
 
 from dataclasses import replace
 import os
-import tempfile
 
 import numpy as np
 
+from orchestrate.files.folders import WorkFolder
 from orchestrate.workers import freefem
 from orchestrate.ddm.contact import bond_traction, contact_stress, limits_on_axis
 from orchestrate.workers.problem_file import write_problem
@@ -82,7 +82,8 @@ def monolithic_of(problem, before=()):
     folder: its traces (solve_monolithic) and interface stresses, in b and E. On a load
     path (Scene.load.path), ``before``: the problems of its earlier steps, in order, each
     solved from the friction slips of the one before (its sticking points keep them)."""
-    with tempfile.TemporaryDirectory(prefix="monolithic-") as workdir:
+    # removed after a killed process too (a study killed by SIGTERM left them)
+    with WorkFolder(WorkFolder.MONOLITHIC_PREFIX) as workdir:
         origin = None
         for number, step in enumerate(before, start=1):
             step_dir = os.path.join(workdir, f"step{number}")

@@ -106,7 +106,7 @@ def worker_init(driver):
     and keep a Session, closed when the process ends."""
     from multiprocessing.util import Finalize
 
-    from orchestrate.workers.worker import die_with_parent
+    from orchestrate.workers.children import die_with_parent
 
     die_with_parent(driver)
     Finalize(None, close_process_session, exitpriority=10)

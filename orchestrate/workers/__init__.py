@@ -7,6 +7,6 @@ equation, every solve is a worker's."""
 
 from orchestrate.workers.provenance import forms_digest
 from orchestrate.workers.session import Session
-from orchestrate.workers.worker import die_with_parent
+from orchestrate.workers.children import die_with_parent
 
 __all__ = ["Session", "die_with_parent", "forms_digest"]

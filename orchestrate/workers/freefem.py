@@ -5,11 +5,13 @@ environment variable ORCHESTRATE_FORMS (a copy of it with edited forms, say): ev
 worker, the monolithic solve and the forms' hashes in a run's provenance
 (orchestrate/workers/provenance.py) read the same folder."""
 
+import functools
 import os
 import shutil
 import subprocess
 
 from orchestrate.paths import forms_dir
+from orchestrate.workers.children import die_with_parent
 
 # Debian's /etc/freefem++.pref points to a plugin folder that does not exist.
 DEFAULT_PLUGIN_DIR = "/usr/lib/freefem++"
@@ -44,11 +46,13 @@ def command(script, arguments):
 
 
 def run_script(script, arguments, log_path, timeout=None):
-    """Run a script to completion; raise with the end of its log if it fails."""
+    """Run a script to completion (it dies with this process: a monolithic solve of a
+    killed study ran on); raise with the end of its log if it fails."""
     with open(log_path, "w") as log:
         completed = subprocess.run(command(script, arguments), stdout=log,
                                    stderr=subprocess.STDOUT, env=environment(),
-                                   timeout=timeout, start_new_session=True)
+                                   timeout=timeout, start_new_session=True,
+                                   preexec_fn=functools.partial(die_with_parent, os.getpid()))
     if completed.returncode != 0:
         raise RuntimeError(f"FreeFEM script {script} failed (exit {completed.returncode}):\n"
                            + log_tail(log_path))

@@ -93,7 +93,7 @@ class Entry:
         self.forms = forms         # the digest of the forms when it started
         self.scenes = 0
         self.robin_map = None
-        # it dies with this thread (worker.die_with_parent: the kernel's parent-death
+        # it dies with this thread (children.die_with_parent: the kernel's parent-death
         # signal follows the thread that started a process, not its process)
         self.thread = threading.current_thread()
 

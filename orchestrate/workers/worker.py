@@ -9,7 +9,6 @@ worker that dies, or says nothing for ``timeout`` seconds, raises ``WorkerError`
 the end of its log.
 """
 
-import ctypes
 import fcntl
 import functools
 import os
@@ -20,6 +19,7 @@ import subprocess
 import time
 
 from orchestrate.workers import freefem
+from orchestrate.workers.children import die_with_parent
 from orchestrate.workers.exchange import Command, Numbers, RecordError
 from orchestrate.errors import SystemFailure
 
@@ -56,19 +56,6 @@ def _widen(fd):
 
 class WorkerError(SystemFailure):
     """A worker died, timed out or answered something unexpected."""
-
-
-def die_with_parent(parent=None):
-    """Runs in the child (before exec): get SIGKILL when the parent dies, even by
-    SIGKILL. ``parent``: the pid the child was made by; a parent that died before the
-    request took effect is caught by looking again (the kernel's known race)."""
-    PR_SET_PDEATHSIG = 1
-    try:
-        ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
-    except OSError:
-        pass
-    if parent is not None and os.getppid() != parent:
-        os._exit(1)
 
 
 class Worker:

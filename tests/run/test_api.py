@@ -126,3 +126,31 @@ def test_a_run_started_from_a_result_names_it_not_a_deleted_folder(api_result, t
     saved = unsaved.save(tmp_path / "saved")
     again = orchestrate.solve(scene, start_from=unsaved)
     assert again.summary["started_from"] == str(saved.resolve())
+
+
+def test_a_process_killed_in_a_monolithic_solve_leaves_no_solver_and_its_folder_goes(tmp_path):
+    """A study killed while it solves monolithically (SIGKILL: nothing of its own runs)
+    takes its FreeFEM solve with it, and the next run's working folder removes its
+    folder (its lock is free)."""
+    from orchestrate.files.folders import WorkFolder, remove_dead_work_folders
+    from tests.conftest import processes_mentioning
+    tmp = tmp_path / "tmp"
+    tmp.mkdir()
+    solving = ("from orchestrate.run.monolithic import monolithic_solution; "
+               "from orchestrate.model.scene import Settings; import orchestrate; "
+               "monolithic_solution(orchestrate.paper_scene(h2=0.25), Settings(mesh_level=3))")
+    killed = subprocess.Popen([sys.executable, "-c", solving], cwd=PROJECT_DIR,
+                              env=dict(os.environ, TMPDIR=str(tmp)),
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while not [pid for pid in processes_mentioning(str(tmp))
+               if b"monolithic.edp" in open(f"/proc/{pid}/cmdline", "rb").read()]:
+        assert killed.poll() is None and time.monotonic() < deadline, killed.communicate()
+        time.sleep(0.02)
+    killed.kill()
+    killed.wait()
+    time.sleep(0.3)                                   # the solver follows it
+    assert processes_mentioning(str(tmp)) == []
+    assert len(list(tmp.glob(WorkFolder.MONOLITHIC_PREFIX + "*"))) == 1
+    remove_dead_work_folders(tmp)
+    assert list(tmp.iterdir()) == []
