@@ -158,8 +158,8 @@ sliding: setup
 	$(PYTHON) -m studies.sliding_patches
 
 # Iterations per contact set of the gallery's scenes at mesh levels 1-3, the coatings
-# inside the base's worker and exchanged across their bonds, and the contacts' and bonds'
-# sides unsplit (results/iterations.md)
+# inside the base's worker and exchanged across their bonds, the contacts' and bonds'
+# sides unsplit, and two levels (results/iterations.md)
 iterations: setup
 	$(PYTHON) -m studies.iterations
 

@@ -1,17 +1,18 @@
 """Iterations per contact set on the gallery's scenes, against the mesh level: what the
-Robin loop's inner solve costs where it iterates, with the coatings inside the base's
-worker (Settings.bonds "inside", the default) and exchanged across their bonds, and
-exchanged with a contact's and a bond's sides unsplit (Settings.contact_split and
-bond_split 1, against the default split; ``python -m studies.iterations``, ``make
-iterations``).
+Robin loop's inner solve costs where it iterates, on one level with the coatings inside
+the base's worker (Settings.bonds "inside", the default) and exchanged across their
+bonds, exchanged with a contact's and a bond's sides unsplit (Settings.contact_split and
+bond_split 1, against the default split), and with two levels (inner_solve
+"two-level", the coatings inside the base's worker; ``python -m studies.iterations``,
+``make iterations``).
 
-Every scene of orchestrate/scenes/gallery/ whose mesh the machine takes is solved with
-the inner solve iterated on one level (inner_solve "iterate"), in each variant,
-at mesh levels 1 to 3 (``--levels``), from a cold start, one run each. A row: the
-Robin iterations of the final contact set (the linear iterations that set's fixed
-point took) and the most any set took, the contact sets, all iterations, the time to
-answer and the unknowns. The table's findings: the largest final-set count at each
-level and its growth from the first level to the last, per variant.
+Every scene of orchestrate/scenes/gallery/ whose mesh the machine takes is solved in
+each variant at mesh levels 1 to 3 (``--levels``), from a cold start, one run each. A
+row: the Robin iterations of the final contact set (the linear iterations that set's
+fixed point took) and the most any set took, the contact sets, all iterations, the time
+to answer and the unknowns. The table's findings: the largest final-set count at each
+level and its growth from the first level to the last, per variant, and each variant's
+time against the one-level default's.
 
 Writes results/iterations.csv and results/iterations.md.
 """
@@ -33,13 +34,16 @@ from studies.paths import RESULTS_DIR
 from studies.report import Column, Report, command_line, seconds, significant
 
 GALLERY_DIR = SCENES_DIR / "gallery"
-# (bonds, contact_split and bond_split): the default split, each way of the bonds;
-# exchanged unsplit
-VARIANTS = (("inside", 4.0), ("exchanged", 4.0), ("exchanged", 1.0))
-
-
-def _variant(bonds, split):
-    return bonds if split == VARIANTS[0][1] else f"{bonds}, unsplit"
+# Each variant's settings: on one level the default split, each way of the bonds, and
+# exchanged unsplit; two levels, the coatings inside (their sides held, unsplit)
+ONE_LEVEL = "inside"
+VARIANTS = {
+    ONE_LEVEL: {"inner_solve": "iterate", "bonds": "inside"},
+    "exchanged": {"inner_solve": "iterate", "bonds": "exchanged"},
+    "exchanged, unsplit": {"inner_solve": "iterate", "bonds": "exchanged",
+                           "contact_split": 1.0, "bond_split": 1.0},
+    "two levels": {"inner_solve": "two-level", "bonds": "inside"},
+}
 
 
 def counted_run(scene, settings):
@@ -63,14 +67,12 @@ def counted_run(scene, settings):
             "inside": bool(summary["strategy"]["bonds_inside"])}
 
 
-def measure(path, level, bonds, split):
+def measure(path, level, variant):
     """One scene's run at one mesh level, one variant: its row."""
     scene, settings = scene_and_settings(path)
-    row = {"scene": path.stem, "mesh_level": level, "bonds": bonds, "contact_split": split,
-           "variant": _variant(bonds, split)}
+    row = {"scene": path.stem, "mesh_level": level, "variant": variant}
     return {**row, **counted_run(scene, replace(settings, mesh_level=level,
-                                                inner_solve="iterate", bonds=bonds,
-                                                contact_split=split, bond_split=split))}
+                                                **VARIANTS[variant]))}
 
 
 def study(out, names=None, levels=(1, 2, 3), progress=print):
@@ -79,9 +81,9 @@ def study(out, names=None, levels=(1, 2, 3), progress=print):
         if names and path.stem not in names:
             continue
         for level in levels:
-            for bonds, split in VARIANTS:
-                row = measure(path, level, bonds, split)
-                progress(f"{path.stem} level {level} {row['variant']}: {row['status']}")
+            for variant in VARIANTS:
+                row = measure(path, level, variant)
+                progress(f"{path.stem} level {level} {variant}: {row['status']}")
                 rows.append(row)
     table = pd.DataFrame(rows)
     os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
@@ -95,11 +97,13 @@ def write_report(table, out, command="python -m studies.iterations"):
     report.text("Each gallery scene iterated on one level (inner_solve = iterate), its "
                 "coatings inside the base's worker (bonds = inside; a scene whose patch is "
                 "thicker than the contact keeps them exchanged: 'inside' says which ran) "
-                "and exchanged across their bonds; and exchanged with a contact's two sides "
+                "and exchanged across their bonds; exchanged with a contact's two sides "
                 "given the neighbour rule's coefficients unsplit and a bond's split by the "
                 "coating's response alone (contact_split = bond_split = 1, against the "
-                "defaults' 4: docs/method.md, Robin parameters); from a cold start on this "
-                "machine, one run each.")
+                "defaults' 4: docs/method.md, Robin parameters); and with two levels "
+                "(inner_solve = two-level, bonds = inside: every side held and unsplit, "
+                "docs/method.md, Two levels); from a cold start on this machine, one run "
+                "each.")
     report.table(table, [
         Column("scene", "scene"), Column("mesh_level", "level", "{:.0f}"),
         Column("variant", "variant"), Column("status", "outcome"),
@@ -111,19 +115,28 @@ def write_report(table, out, command="python -m studies.iterations"):
         Column("unknowns", "unknowns", "{:.0f}", "the workers' unknowns"),
         Column("inside", "inside", "{}", "whether the run solved its bonds inside")])
     converged = table[table.status == "converged"]
-    for bonds, split in VARIANTS:
-        variant = _variant(bonds, split)
+    baseline = converged[converged.variant == ONE_LEVEL].set_index(["scene", "mesh_level"])
+    for variant in VARIANTS:
         runs = converged[converged.variant == variant]
         if runs.empty:
             continue
         worst = runs.groupby("mesh_level").final_set.max()
         levels = list(worst.index)
         growth = worst.iloc[-1] / worst.iloc[0] - 1
-        report.finding(f"{variant}: the final contact set took at most "
-                       + ", ".join(f"{worst[level]:.0f} (level {level})" for level in levels)
-                       + f" iterations; {significant(100 * growth, 2)} % more from level "
-                       f"{levels[0]} to {levels[-1]}. Median time at level {levels[0]}: "
-                       f"{significant(runs[runs.mesh_level == levels[0]].time_s.median())} s.")
+        text = (f"{variant}: the final contact set took at most "
+                + ", ".join(f"{worst[level]:.0f} (level {level})" for level in levels)
+                + f" iterations; {significant(100 * growth, 2)} % more from level "
+                f"{levels[0]} to {levels[-1]}. Median time at level {levels[0]}: "
+                f"{significant(runs[runs.mesh_level == levels[0]].time_s.median())} s.")
+        if variant != ONE_LEVEL:
+            ratios = (runs.set_index(["scene", "mesh_level"]).time_s
+                      / baseline.time_s).dropna().groupby("mesh_level")
+            text += (" Its time over the one-level run's (inside), per level, median "
+                     "(least-most): " + ", ".join(
+                         f"level {level} {significant(r.median())} "
+                         f"({significant(r.min())}-{significant(r.max())})"
+                         for level, r in ratios) + ".")
+        report.finding(text)
     failed = table[table.status != "converged"]
     if len(failed):
         report.finding("Not converged or refused: " + ", ".join(
