@@ -71,9 +71,10 @@ CASES = {
         paper_scene(model="elastic"), Settings(eps_u=1e-9, mesh_level=2,
                                                inner_solve="two-level")),
     # the coarse level models one worker for the base and its patches (coarse.py)
-    "three patches, shell and 2D, two levels, inside the base's worker, mesh level 2": (
+    # (on the paper's mesh: its coarse level has interface elements twice as long)
+    "three patches, shell and 2D, two levels, inside the base's worker": (
         _file("discrete", **{"coating[2].model": "elastic"}),
-        Settings(eps_u=1e-8, mesh_level=2, inner_solve="two-level", bonds="inside")),
+        Settings(eps_u=1e-8, inner_solve="two-level", bonds="inside")),
     "paper, 2D coating, h2 b/2, E2 5E": (paper_scene(model="elastic", h2=0.5, E2=5.0), TIGHT),
     "paper under a force": (paper_scene(force=7.7e-4), TIGHT),
     "cylinder on a coated block": (_file("cylinder"), TIGHT),
