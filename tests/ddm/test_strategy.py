@@ -514,6 +514,22 @@ def test_the_first_contact_set_is_the_predicted_one():
     assert prepare(paper_scene(), Settings(method="paper")).strategy.first_contact is None
 
 
+def test_two_levels_take_the_coatings_inside_only_where_asked():
+    """Asked, two levels model the base's worker with its coatings from its parts' maps
+    (coarse.py); under auto's contrast, where one level takes them inside, two levels
+    keep them exchanged (with one worker the rigid cylinder took 366 iterations at mesh
+    level 2 against 212)."""
+    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
+    asked = prepare(scene, Settings(mesh_level=2, inner_solve="two-level", bonds="inside"))
+    assert asked.strategy.inner_solve.planned == TWO_LEVEL
+    assert asked.strategy.bonds_inside and dict(asked.strategy.workers)[COATED_BASE]
+    assert asked.strategy.sweep == (("indenter", COATED_BASE),)
+    by_auto = prepare(scene, Settings(mesh_level=2, inner_solve="two-level"))
+    assert by_auto.strategy.inner_solve.planned == TWO_LEVEL
+    assert by_auto.strategy.bonds_inside == ()
+    assert COATED_BASE not in dict(by_auto.strategy.workers)
+
+
 def test_auto_leaves_the_coarse_level_out_under_contrast():
     """At mesh level 2 auto takes two levels, which hold every side; where a side
     releases its inactive points (the near-rigid cylinder: its base's side under a
