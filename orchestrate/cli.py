@@ -55,10 +55,11 @@ _SETTINGS_HELP = {
              "element length",
     "robin_sides": "each interface side's gamma: neighbour (gamma times the neighbour's "
                    "plane-strain modulus over the stiffer body's) or equal",
-    "bonds": "the active-set loop on one level: inside, the base and its coatings solved "
-             "by one worker where the loop iterates and every patch is thinner than the "
-             "contact; auto, so under a contrast of the bodies; exchanged, every coating "
-             "its own worker, Robin-exchanged across its bond",
+    "bonds": "the active-set loop's: inside, the base and its coatings solved by one "
+             "worker where the loop iterates (on one level, or two) and every patch is "
+             "thinner than the contact; auto, so on one level under a contrast of the "
+             "bodies; exchanged, every coating its own worker, Robin-exchanged across its "
+             "bond",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
     "L divides every mesh size by L",

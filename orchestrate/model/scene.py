@@ -759,13 +759,14 @@ class Settings:
                                    # neighbour's plane-strain modulus over the stiffer
                                    # body's (orchestrate/ddm/robin_parameters.py);
                                    # "equal", gamma on every side
-    bonds: str = "auto"            # the active-set loop on one level: "inside", the base
-                                   # and its coatings solved by one worker
+    bonds: str = "auto"            # the active-set loop's: "inside", the base and its
+                                   # coatings solved by one worker
                                    # (freefem/coated_base.edp), the bonds in its matrix,
-                                   # where the loop iterates; "auto", so under a contrast
-                                   # of the bodies (hold_contrast); "exchanged", every
-                                   # coating its own worker, the bonds Robin-exchanged as
-                                   # the paper's loop (and two levels) exchange them
+                                   # where the loop iterates (on one level, or two);
+                                   # "auto", so on one level under a contrast of the
+                                   # bodies (hold_contrast); "exchanged", every coating
+                                   # its own worker, the bonds Robin-exchanged as the
+                                   # paper's loop exchanges them
     rho: float = 0.5               # relaxation (24), in (0, 1]
     eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
     max_iterations: int = 3000
