@@ -90,8 +90,10 @@ class CoarseCorrection:
         self.prolong = _interpolation(coarse_layout, layout)     # P: coarse -> fine
         self.restrict = _interpolation(layout, coarse_layout)    # R: fine -> coarse
         self._groups = [_rows_of(coarse, coarse_layout, group) for group in coarse.sweep]
+        # every worker at once (one group, or the bonds inside): B_c's inverse through
+        # I - L S; else the sweep's product, formed
+        self._at_once = bool(inside) or len(self._groups) == 1
         self._bond_data = None          # the data entries of the bonds inside, if any
-        self._laws = None
         if inside:
             self._bond_data = np.zeros(system.size, dtype=bool)
             for i in inside:
@@ -122,7 +124,7 @@ class CoarseCorrection:
         coarse = self.restrict @ residual
         # by LU factors, a solve per residual (forming (I - B_c)^-1 B_c took as many as
         # its columns: TiN at mesh level 2, 2.1 s of the loop's 8.9 s)
-        if self._laws is None:
+        if not self._at_once:
             return self.prolong @ (lu_solve(self._factors, coarse) - coarse)
         step = (coarse if self._bond_data is None
                 else coarse - self._bond_states @ (self._bond_laws @ coarse))
@@ -143,8 +145,7 @@ class CoarseCorrection:
         S, _ = self.system.state_matrix(alpha)
         L = csr_matrix(L)           # a few entries per row
         self._psi = psi.copy()
-        self._laws = None
-        if self._bond_data is None and len(self._groups) > 1:
+        if not self._at_once:
             one_iteration = _sweep_matrix(np.asarray(S @ L), self._groups)
             self._factors = lu_factor(np.eye(len(one_iteration)) - one_iteration)
             return
