@@ -14,7 +14,7 @@ from orchestrate.ddm.state import StateLayout
 from orchestrate.files.folders import WorkFolder
 from orchestrate.mesh.discretization import discretize
 from orchestrate.workers.session import Session
-from orchestrate.workers.subdomains import Subdomains, write_inputs
+from orchestrate.workers.subdomains import Subdomains, written_inputs
 
 
 class CoarseLevel:
@@ -40,7 +40,7 @@ class CoarseLevel:
         try:
             workdir = self._resources.enter_context(WorkFolder())
             session = self._resources.enter_context(Session())
-            files = write_inputs(self.coarse, workdir)
+            files = written_inputs(self.coarse, workdir)     # each worker starts once written
             self.workers = self._resources.enter_context(
                 Subdomains(self.coarse, files, session))
             self.workers.request_maps(self._data())

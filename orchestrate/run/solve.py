@@ -60,7 +60,7 @@ from orchestrate.run.warm_start import start_state
 from orchestrate.workers import freefem
 from orchestrate.workers.provenance import forms_hashes, provenance
 from orchestrate.workers.session import Session
-from orchestrate.workers.subdomains import start_subdomains, write_inputs
+from orchestrate.workers.subdomains import start_subdomains, written_inputs
 
 
 def solve(scene, settings, out_dir, progress=None, overwrite=False, start_from=None,
@@ -217,7 +217,8 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
           CoarseLevel(problem, plan.coarse, strategy.knobs.coarse_newton_steps)  # probes
           if strategy.two_levels else contextlib.nullcontext() as coarse_level):  # meanwhile
         scratch = str(folder.scratch)
-        files = write_inputs(problem, workdir, strategy.workers)
+        # each worker starts once its files are written: it assembles while the next mesh is made
+        files = written_inputs(problem, workdir, strategy.workers)
         with start_subdomains(problem, settings, files, workers, strategy.workers,
                               strategy.inner_solve.planned == "iterate") as subdomains:
             if strategy.inner_solve.pending:    # auto: whether the maps pay, on the workers' sizes

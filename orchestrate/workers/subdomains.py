@@ -6,14 +6,16 @@ script takes the scene's geometry_arguments), each on its own mesh or mid-line a
 file; or the base and its coatings run one worker together, freefem/coated_base.edp, on
 their files and a problem file (problem_file.py) that bonds them (the run's
 Strategy.workers says which). What they are sent and send back are the records of
-orchestrate/workers/exchange.py. Within a
-Robin iteration the solves are independent: every request is written before any reply
+orchestrate/workers/exchange.py. A worker starts as soon as its files are written
+(written_inputs, the largest first), so it assembles while the next mesh is made; within
+a Robin iteration the solves are independent: every request is written before any reply
 is read, so the workers compute at the same time.
 The workers come from a Session (orchestrate/workers/session.py), which may have kept them from
 an earlier scene; a kept worker's solves become evaluations of its Robin-to-trace map
 (orchestrate/workers/robin_map.py).
 """
 
+from collections.abc import Mapping
 from dataclasses import replace
 import hashlib
 import os
@@ -28,6 +30,7 @@ from orchestrate.workers.exchange import (REVOLUTION_SHELL_COLUMNS, SHELL_COLUMN
                                           ShellOutput, SideArrays, Sides, TraceReply)
 from orchestrate.mesh.meshes import coating_mesh, write_body_mesh, write_medit
 from orchestrate.mesh.body_plans import BodyPlan
+from orchestrate.mesh.problem_size import estimated_dofs
 from orchestrate.workers.problem_file import write_problem
 from orchestrate.workers.robin_map import check, receive_map, send_map_request
 from orchestrate.workers.provenance import SCRIPTS
@@ -40,12 +43,28 @@ def write_inputs(problem, workdir, workers=()):
     they hold, the origin it is taken from)}} (orchestrate/workers/session.py). A worker
     of several subdomains (``workers``: Strategy.workers) gets their problem file:
     {worker: {"problem": path, "geometry": (fingerprint, the origins of its subdomains)}}."""
+    files = {}
+    for _ in written_inputs(problem, workdir, workers, files):
+        pass
+    return files
+
+
+def written_inputs(problem, workdir, workers=(), files=None):
+    """write_inputs a worker at a time (``workers``: by default each subdomain its own):
+    yields (worker, its files) as soon as they are written, the largest worker's first,
+    so that it assembles and factorises, the longest set-up, while the smaller ones'
+    meshes are made; ``files`` collects what write_inputs returns."""
+    files = {} if files is None else files
+    workers = dict(workers or ((name, (name,)) for name in problem.subdomains))
+    dofs = estimated_dofs(problem)
     try:
-        files = _write_inputs(problem, workdir)
-        for worker, names in workers:
+        for worker in sorted(workers, key=lambda w: -sum(dofs[name] for name in workers[w])):
+            names = workers[worker]
+            for name in names:
+                files[name] = _write_subdomain_inputs(problem, workdir, name)
             if names != (worker,):
                 files[worker] = _write_problem(problem, files, workdir, worker, names)
-        return files
+            yield worker, files[worker]
     except OSError as error:
         raise system_failure(error, "writing the meshes and interface files") from None
 
@@ -66,31 +85,29 @@ def _write_problem(problem, files, workdir, worker, names):
     return {"problem": path, "geometry": (digest.hexdigest(), origins)}
 
 
-def _write_inputs(problem, workdir):
-    files = {}
-    for name, subdomain in problem.subdomains.items():
-        files[name] = {"sides": os.path.join(workdir, f"{name}.sides")}
-        sides = [(problem.interfaces[i], problem.interfaces[i].sides[k])
-                 for i, k in problem.sides_of(name)]
-        with open(files[name]["sides"], "w") as out:
-            out.write(Sides(tuple(SideArrays.of(*pair) for pair in sides)).encode())
-        plan = subdomain.plan
-        if subdomain.kind == "rigid":
-            files[name]["geometry"] = files_fingerprint([files[name]["sides"]])
-        elif subdomain.kind == "body":
-            files[name]["mesh"] = os.path.join(workdir, f"{name}.mesh")
-            if isinstance(plan, BodyPlan):
-                mesh = write_body_mesh(plan, files[name]["mesh"])
-            else:
-                mesh = coating_mesh(plan)
-                write_medit(mesh, files[name]["mesh"])
-            files[name]["geometry"] = body_fingerprint(mesh, sides)
+def _write_subdomain_inputs(problem, workdir, name):
+    subdomain = problem.subdomains[name]
+    files = {"sides": os.path.join(workdir, f"{name}.sides")}
+    sides = [(problem.interfaces[i], problem.interfaces[i].sides[k])
+             for i, k in problem.sides_of(name)]
+    with open(files["sides"], "w") as out:
+        out.write(Sides(tuple(SideArrays.of(*pair) for pair in sides)).encode())
+    plan = subdomain.plan
+    if subdomain.kind == "rigid":
+        files["geometry"] = files_fingerprint([files["sides"]])
+    elif subdomain.kind == "body":
+        files["mesh"] = os.path.join(workdir, f"{name}.mesh")
+        if isinstance(plan, BodyPlan):
+            mesh = write_body_mesh(plan, files["mesh"])
         else:
-            files[name]["nodes"] = os.path.join(workdir, f"{name}_nodes.txt")
-            with open(files[name]["nodes"], "w") as out:
-                out.write(f"{len(plan.nodes)}\n" + "\n".join(map(repr, plan.nodes.tolist())) + "\n")
-            files[name]["geometry"] = files_fingerprint([files[name]["nodes"],
-                                                         files[name]["sides"]])
+            mesh = coating_mesh(plan)
+            write_medit(mesh, files["mesh"])
+        files["geometry"] = body_fingerprint(mesh, sides)
+    else:
+        files["nodes"] = os.path.join(workdir, f"{name}_nodes.txt")
+        with open(files["nodes"], "w") as out:
+            out.write(f"{len(plan.nodes)}\n" + "\n".join(map(repr, plan.nodes.tolist())) + "\n")
+        files["geometry"] = files_fingerprint([files["nodes"], files["sides"]])
     return files
 
 
@@ -183,19 +200,6 @@ class Subdomains:
         self.shapes = {worker: [(problem.interfaces[i].components, problem.interfaces[i].size)
                                 for i, _ in sides] for worker, sides in self.sides.items()}
         self.specs, self.keys, self.origins = {}, {}, {}
-        for name, names in self.parts.items():
-            subdomain = problem.subdomains[name] if names == (name,) else None
-            script = SCRIPTS[subdomain.kind if subdomain else "coated_base"]
-            arguments = worker_arguments(subdomain, files[name]) + geometry_arguments(problem.scene)
-            if subdomain and subdomain.stamp:
-                arguments += load_arguments(problem)
-            self.specs[name] = (script, arguments)
-            geometry, self.origins[name] = files[name]["geometry"]
-            numbers = [str(value) for flag, value in zip(arguments[::2], arguments[1::2])
-                       if flag not in _FILE_ARGUMENTS]
-            key = (script, geometry, tuple(arguments[::2]), tuple(numbers))
-            # equal patches of one scene (a shell's files hold no place) get a worker each
-            self.keys[name] = key + (sum(k[:-1] == key for k in self.keys.values()),)
         # the unknowns a map probes: the sides with a Robin term (not a bond inside)
         inside = {i for names in self.parts.values() if len(names) > 1
                   for i, _ in problem.sides_of(*names)
@@ -207,7 +211,7 @@ class Subdomains:
         self.last_requests, self.mapped = {}, {}
         self.shift = 0.0          # the stamp's shift along x1 in its last solve (partial slip)
         self._pending = {}           # map requests sent and not yet answered, by name
-        self.dofs = self._start()
+        self.dofs = self._start(self._specified(files))
         # auto may solve directly unless the run's strategy planned to iterate
         self.direct = (self.use_maps and inner_solve in ("auto", "direct")
                        and not iterate)
@@ -246,15 +250,38 @@ class Subdomains:
                                       if entry.scenes == 1},
                 "kept_workers": self.kept}
 
-    def _start(self, names=None):
-        """Take the workers of ``names`` (None: every one; a new one assembles and
-        factorises at once); return their dofs."""
+    def _specified(self, files):
+        """Each worker's name once its script, arguments and key are known, from ``files``:
+        write_inputs' dict, or written_inputs' (worker, its files) as they are written."""
+        pairs = (((name, files[name]) for name in self.parts) if isinstance(files, Mapping)
+                 else files)
+        for name, its_files in pairs:
+            names = self.parts[name]
+            subdomain = self.problem.subdomains[name] if names == (name,) else None
+            script = SCRIPTS[subdomain.kind if subdomain else "coated_base"]
+            arguments = (worker_arguments(subdomain, its_files)
+                         + geometry_arguments(self.problem.scene))
+            if subdomain and subdomain.stamp:
+                arguments += load_arguments(self.problem)
+            self.specs[name] = (script, arguments)
+            geometry, self.origins[name] = its_files["geometry"]
+            numbers = [str(value) for flag, value in zip(arguments[::2], arguments[1::2])
+                       if flag not in _FILE_ARGUMENTS]
+            key = (script, geometry, tuple(arguments[::2]), tuple(numbers))
+            # equal patches of one scene (a shell's files hold no place) get a worker each
+            self.keys[name] = key + (sum(k[:-1] == key for k in self.keys.values()),)
+            yield name
+
+    def _start(self, names):
+        """Take the workers of ``names``, each as soon as it comes (a new one assembles
+        and factorises at once, while the next one's mesh is made); return their dofs."""
         timeout = self.problem.settings.worker_timeout
         try:
-            for name in (self.specs if names is None else names):
+            for name in names:
                 script, arguments = self.specs[name]
                 self.entries[name] = self.session.take(name, script, arguments, self.keys[name],
                                                        self.origins[name], timeout)
+            self.entries = {name: self.entries[name] for name in self.parts if name in self.entries}
             return {name: self.session.ready(entry) for name, entry in self.entries.items()}
         except OSError as error:
             self._drop()
@@ -442,7 +469,7 @@ class FreshProcessSubdomains(Subdomains):
         return traces, seconds, descent
 
     def outputs(self):
-        self._start()
+        self._start(list(self.specs))
         try:
             for name, data in self.last_data.items():
                 super().solve(data, [name])
