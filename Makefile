@@ -8,6 +8,8 @@
 #   make discrete   a cylinder over a coating in patches, both models (results/discrete.png)
 #   make adequacy   where each coating model is adequate, and model = "auto" checked
 #                   on held-out plane and axisymmetric scenes (results/adequacy/)
+#   make bond-shear the bond's peak shear against the elements through the coating
+#                   (results/bond_shear_mesh.md)
 #   make gallery    the engineers' scenes against the monolithic solve (results/gallery.md)
 #   make iterations iterations per contact set against the mesh level (results/iterations.md)
 #   make contrast   iterations per contact set across the indenter's modulus
@@ -29,7 +31,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy gallery iterations contrast indentation line-contact friction sliding
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy bond-shear gallery iterations contrast indentation line-contact friction sliding
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -174,6 +176,11 @@ contrast: setup
 # resumes).
 adequacy: setup
 	$(PYTHON) -m studies.adequacy
+
+# The bond's peak shear as the interface elements shrink against the coating's thickness,
+# each coating model (results/bond_shear_mesh.md): the limit of the warning coarse_bond
+bond-shear: setup
+	$(PYTHON) -m studies.bond_shear_mesh
 
 clean:
 	rm -rf results/*/ .pytest_cache

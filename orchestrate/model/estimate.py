@@ -71,9 +71,11 @@ the estimate.
 
 Where the estimate was not calibrated, or cannot hold, the 1D models are "not
 estimated" and auto takes the 2D model: a scene outside the span its family's constants
-were fitted on (the indenter's stiffness against the base's, indenter_share, and h2/a:
-a 0.1 mm polymer coating twice as thick as the Hertz half-width, h2/a = 2.1, had the
-shell's contact estimate 12 times its measured error), a coating Poisson ratio outside
+were fitted on (the indenter's stiffness against the base's, indenter_share, h2/a: a
+0.1 mm polymer coating twice as thick as the Hertz half-width, h2/a = 2.1, had the
+shell's contact estimate 12 times its measured error; and g: a hard lacquer 100 times
+stiffer than the polymer it coats, g seven times below the span, had the stretch
+shell's pressure 15 % off where its form said 0.02 %), a coating Poisson ratio outside
 NU2_CALIBRATED
 (towards 0.5 the shell's error changes sign and no longer follows x: measured -0.6 to
 -2.4 % at 0.45-0.49), and a patch end within the contact, where the contact presses on
@@ -117,6 +119,7 @@ class Calibration:
     stretch_shear: tuple        # S, s, t, r
     indenter_share: tuple       # the span of indenter_share it was fitted on
     thickest: float             # ... and the largest h2/a
+    coating_compliance: tuple   # ... and the span of g = E*/G2
 
 
 # Fitted on the plane-strain calibration set (results/adequacy/plane_calibration.csv)
@@ -129,7 +132,8 @@ PLANE = Calibration(
     stretch_bond=0.03806,
     stretch_shear=(0.3972, 0.9313, 0.5122, -0.6887),
     indenter_share=(0.2308, 1.0),
-    thickest=0.9498)
+    thickest=0.9498,
+    coating_compliance=(0.1429, 28.57))
 # Fitted on the axisymmetric calibration set (results/adequacy/revolution_calibration.csv)
 REVOLUTION = Calibration(
     shell_contact=(0.2956, -0.2946, 0.04029, 0.1924),
@@ -140,7 +144,8 @@ REVOLUTION = Calibration(
     stretch_bond=0.07942,
     stretch_shear=(0.2482, 0.7499, 0.4797, -1.022),
     indenter_share=(0.3333, 1.0),
-    thickest=0.9015)
+    thickest=0.9015,
+    coating_compliance=(0.1429, 14.29))
 
 NU2_CALIBRATED = (0.1, 0.4)    # the coating Poisson ratios the estimate holds for
 END_MARGIN = 0.5               # a patch end this many thicknesses from the contact is in it
@@ -298,7 +303,7 @@ def indenter_share(scene):
 def not_estimated(scene, coating, a=None, calibrated=True):
     """Why the 1D models' errors are not estimated for this patch (None: they are);
     ``calibrated``: also where the scene lies outside the span its family's constants
-    were fitted on (indenter_share, h2/a; studies/adequacy.py fits with it off)."""
+    were fitted on (indenter_share, h2/a, g; studies/adequacy.py fits with it off)."""
     if scene.frictional:
         return ("friction: the estimate is calibrated on frictionless contacts (the "
                 "friction traction loads the coating's top in shear)")
@@ -316,6 +321,10 @@ def not_estimated(scene, coating, a=None, calibrated=True):
     if calibrated and coating.thickness / a > constants.thickest * (1 + SPAN_MARGIN):
         return (f"h2/a = {coating.thickness / a:.3g} thicker than the calibrated "
                 f"{constants.thickest:.3g}")
+    g, (low, high) = scene_ratios(scene, coating, a)[3], constants.coating_compliance
+    if calibrated and not low * (1 - SPAN_MARGIN) <= g <= high * (1 + SPAN_MARGIN):
+        return (f"the contact's modulus over the coating's shear modulus (E*/G2 {g:.3g}) "
+                f"outside the calibrated [{low:.3g}, {high:.3g}]")
     centre = scene.indenter.centre
     step = coating.thickness - sum(c.thickness for c in scene.coatings
                                    if c.start <= centre <= c.end)

@@ -14,6 +14,8 @@ from orchestrate.run.api import solve as solve_result
 from orchestrate.run.monolithic import monolithic_curves, monolithic_of, monolithic_solution
 from orchestrate.run.plan import prepare
 from orchestrate.run.solve import solve as solve_into
+from orchestrate.run.validity import edge_elements
 
-__all__ = ["END_ZONE", "Result", "RunFailed", "monolithic_curves", "monolithic_of",
-           "monolithic_solution", "near_patch_ends", "prepare", "solve_into", "solve_result"]
+__all__ = ["END_ZONE", "Result", "RunFailed", "edge_elements", "monolithic_curves",
+           "monolithic_of", "monolithic_solution", "near_patch_ends", "prepare", "solve_into",
+           "solve_result"]

@@ -24,6 +24,10 @@ a column of a sweep's table; ``--strict`` makes them an exit status of their own
                            its pressure
     coarse_mesh            ... across the contact predicted before any work (the a priori
                            half-width), or across a narrow patch's part of it
+    coarse_bond            a patch under the predicted contact's edge thinner than
+                           BOND_RESOLUTION interface elements there: the bond's shear
+                           peaks at the edge over about the coating's thickness, and its
+                           largest value depends on the mesh
     model_error            a coating model chosen by the user whose estimated error
                            exceeds the tolerance (settings.model_tolerance)
     model_uncalibrated     ... whose error the estimate does not cover (its reason)
@@ -45,8 +49,8 @@ Values are computed in the solver's b and E and said in the scene's units.
 
 import numpy as np
 
-from orchestrate.model.estimate import (ANSWER_NAMES, ANSWERS, estimated_errors, not_estimated,
-                                        worst_error)
+from orchestrate.model.estimate import (ANSWER_NAMES, ANSWERS, END_MARGIN, estimated_errors,
+                                        not_estimated, worst_error)
 from orchestrate.model.scene import SHELL_MODELS
 
 STRAIN_LIMIT = 0.02          # linear elasticity drops the strain's quadratic term, about half
@@ -55,6 +59,10 @@ MODULUS_SHARE = 0.1          # a stress of a tenth of the modulus: a strain of 1
 DESCENT_LIMIT = 0.01         # the descent over the smaller body's depth (small displacements)
 MISMATCH_LIMIT_DEG = 10.0    # the pairing's error ~ (1 - cos): 1.5 % at 10 degrees
 ELEMENTS_ACROSS = 10         # interface elements across a contact zone (its whole width)
+BOND_RESOLUTION = 2.0        # a patch's thickness over the interface elements at the contact's
+                             # edge: thinner, the 2D coating's peak bond shear moved by
+                             # several per cent when the elements were halved (the adequacy
+                             # report's table "The bond shear and the mesh")
 EDGE_SHARE = 0.5             # a peak this share of its zone's half-width off its centre is
                              # at the edge: a curved indenter's pressure peaks at the centre
 COATING_SHARE = 0.25         # a coating's thickness over its base's depth
@@ -85,7 +93,8 @@ def mesh_warnings(problem, say, a):
     work: fewer than ELEMENTS_ACROSS interface elements across the a priori contact width
     2a (``a``: orchestrate/model/estimate.py's estimate, in b; a half model's mirrored), or
     across a patch's part of it (a pad narrower than the contact carries its own
-    pressure). The limit is studies/resolution.py's (results/resolution.md)."""
+    pressure). The limit is studies/resolution.py's (results/resolution.md). And a patch
+    too thin for its elements at the predicted contact's edge (_bond_resolution_warnings)."""
     scene = problem.scene
     contacts = [i for i in problem.interfaces if i.kind == "contact"]
     if a == 0 or not contacts:
@@ -111,7 +120,49 @@ def mesh_warnings(problem, say, a):
                 f"(limit {ELEMENTS_ACROSS}; elements of {say.length(element)}): a smaller "
                 "element_size (a length with its unit will do) or a higher mesh_level",
                 across, ELEMENTS_ACROSS))
+    return warnings + _bond_resolution_warnings(problem, a, say)
+
+
+def _bond_resolution_warnings(problem, a, say):
+    """A patch under an edge of the predicted contact (away from its ends) thinner than
+    BOND_RESOLUTION interface elements there: the layer spreads the pressure's drop at
+    the edge over about its thickness, which is where the bond's shear peaks; on longer
+    elements that peak is the mesh's (studies/bond_shear_mesh.py)."""
+    warnings = []
+    for n, edge, element in edge_elements(problem, a):
+        coating = problem.scene.coatings[n - 1]
+        thick = coating.thickness / element
+        if thick < BOND_RESOLUTION:
+            warnings.append(_warning(
+                "coarse_bond", f"coating[{n}] ({say.length(coating.thickness)} thick) is "
+                f"{thick:.2g} interface elements thick at the predicted contact's edge "
+                f"x1 = {say.length(edge)} (elements of {say.length(element)}; limit "
+                f"{BOND_RESOLUTION:g}): the bond's shear peaks there over about the "
+                "coating's thickness, so its largest value depends on the mesh: elements "
+                "of at most half the thickness there (element_size) resolve it",
+                thick, BOND_RESOLUTION))
     return warnings
+
+
+def edge_elements(problem, a):
+    """(patch number, edge, interface element there) of every patch under an edge of
+    the contact predicted with half-width ``a`` (a half model's: its edge off the axis),
+    away from the patch's ends; of two such edges, the one of longer elements."""
+    scene = problem.scene
+    contacts = [i for i in problem.interfaces if i.kind == "contact"]
+    if a == 0 or not contacts:
+        return []
+    x1 = np.concatenate([i.position[:, 0] for i in contacts])
+    centre = 0.0 if scene.symmetric else scene.indenter.centre
+    edges = [centre + a] + ([] if scene.symmetric else [centre - a])
+    found = []
+    for n, coating in enumerate(scene.coatings, start=1):
+        margin = coating.thickness * END_MARGIN
+        inside = [(edge, _element_length(x1, edge, edge)) for edge in edges
+                  if coating.start + margin < edge < coating.end - margin]
+        if inside:
+            found.append((n, *max(inside, key=lambda pair: pair[1])))
+    return found
 
 
 def elements_across(x1, symmetric, zones):

@@ -10,13 +10,15 @@ import json
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from orchestrate.errors import RunFailed
 from orchestrate.model.scene_file import scene_and_settings
 from orchestrate.run.solve import solve
-from orchestrate.run.validity import (COATING_SHARE, DESCENT_LIMIT, ELEMENTS_ACROSS,
-                                  MISMATCH_LIMIT_DEG, MODULUS_SHARE, STRAIN_LIMIT)
+from orchestrate.run.validity import (BOND_RESOLUTION, COATING_SHARE, DESCENT_LIMIT,
+                                      ELEMENTS_ACROSS, MISMATCH_LIMIT_DEG, MODULUS_SHARE,
+                                      STRAIN_LIMIT)
 from tests.conftest import PROJECT_DIR, steel_scene
 
 pytestmark = pytest.mark.slow       # not in the everyday subset (make test-fast)
@@ -25,7 +27,8 @@ CYLINDER = PROJECT_DIR / "orchestrate" / "scenes" / "cylinder.toml"
 
 # name: (scene file or None for the paper's, overrides, settings)
 SCENES = {
-    "steel": ("steel", {}, {}),
+    # its 0.1 mm coating 3.4 interface elements thick at the contact's edge (coarse_bond)
+    "steel": ("steel", {}, {"contact_elements": 32}),
     # moduli in GPa under the file's MPa label: 1000 times too soft
     "steel in GPa labelled MPa": ("steel_gpa", {}, {}),
     # a cylinder pressed until its contact spreads over the whole block
@@ -113,7 +116,7 @@ def test_a_shell_whose_bond_shear_is_off_says_so_though_auto_chose_it(summaries)
     summary = summaries["auto's stretch shell on a thin coating"]
     assert summary["scene"]["coatings"][0]["model"] == "stretch_shell"
     found = _warnings(summary)
-    assert set(found) == {"bond_shear_model"}
+    assert set(found) == {"bond_shear_model", "coarse_bond"}   # b/64 on elements of b/16
     shear = found["bond_shear_model"]
     assert shear["value"] > shear["limit"] == summary["settings"]["model_tolerance"]
     assert shear["value"] == pytest.approx(
@@ -148,7 +151,7 @@ def test_every_warning_passed_its_limit(summaries):
         for warning in summary["warnings"]:
             if warning["value"] is None:
                 continue
-            if warning["code"] in ("coarse_contact", "coarse_mesh"):   # too few: below it
+            if warning["code"] in ("coarse_contact", "coarse_mesh", "coarse_bond"):  # too few
                 assert warning["value"] < warning["limit"], (name, warning)
             elif warning["code"] == "contact_at_edge":
                 assert warning["value"] == warning["limit"], (name, warning)
@@ -201,3 +204,23 @@ def test_a_mesh_too_coarse_for_the_predicted_contact_is_said_before_any_work(tmp
     assert warning["limit"] == ELEMENTS_ACROSS
     fine = prepare(*scene_and_settings(steel_scene(tmp_path / "steel.toml")))
     assert [w for w in fine.warnings if w["code"] == "coarse_mesh"] == []
+
+
+def test_a_coating_thinner_than_its_elements_at_the_contact_s_edge_is_said_before_any_work():
+    """The paper's coating at h2 = b/64 on its default mesh is a fraction of an interface
+    element thick at the predicted contact's edge, where the bond's shear peaks over about
+    h2 (studies/bond_shear_mesh.py): said before any work, its value h2 over the element
+    there; on elements of h2/4 there, not said."""
+    from orchestrate.model import Settings, contact_half_width, paper_scene
+    from orchestrate.run.solve import prepare
+
+    scene = paper_scene(h2=1 / 64, model="elastic")
+    plan = prepare(scene, Settings())
+    (warning,) = [w for w in plan.warnings if w["code"] == "coarse_bond"]
+    a = contact_half_width(scene)
+    x1 = np.sort(np.concatenate([i.position[:, 0] for i in plan.problem.contacts]))
+    element = 2 * np.diff(x1[np.abs(x1 - a) < 0.1]).mean()   # P2: two points an element
+    assert warning["value"] == pytest.approx((1 / 64) / element, rel=0.02)
+    assert warning["value"] < warning["limit"] == BOND_RESOLUTION
+    fine = Settings(contact_elements=a * 2 * BOND_RESOLUTION * 64)
+    assert [w for w in prepare(scene, fine).warnings if w["code"] == "coarse_bond"] == []

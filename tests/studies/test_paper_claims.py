@@ -29,6 +29,7 @@ from tests.conftest import PROJECT_DIR
 pytestmark = pytest.mark.slow       # not in the everyday subset (make test-fast)
 
 HEIGHTS = FIGURE_HEIGHTS
+BOND_SHEAR_CODES = ("bond_shear_model", "coarse_bond")   # of the bond's shear, not the claims'
 
 
 @pytest.fixture(scope="module")
@@ -104,7 +105,8 @@ def test_every_figure_scene_gives_its_pinned_peak(figures):
 
 def test_the_figure_scenes_warn_only_where_the_shell_is_measured_off(figures):
     """No figure scene leaves the model (orchestrate/run/validity.py) but the shell runs whose
-    estimated model error exceeds the 1 % tolerance: there the warning is right. Each
+    estimated model error exceeds the 1 % tolerance: there the warning is right (the
+    bond shear's warnings aside: the next test's and coarse_bond, tests/run/test_validity.py). Each
     shell run is measured against the 2D model's run of the same scene (peak contact
     stress and peak bond stress, the estimate's two quantities): the warning is given
     exactly where the measured error exceeds the tolerance, and its value is within a
@@ -113,7 +115,7 @@ def test_the_figure_scenes_warn_only_where_the_shell_is_measured_off(figures):
     elastic = table[table["model"] == "elastic"].set_index(["h2", "E2"])
     for name, row in table.iterrows():
         summary = json.loads((figures / "figures" / "runs" / name / "summary.json").read_text())
-        codes = [w["code"] for w in summary["warnings"] if w["code"] != "bond_shear_model"]
+        codes = [w["code"] for w in summary["warnings"] if w["code"] not in BOND_SHEAR_CODES]
         if row["model"] == "elastic":
             assert codes == [], name
             continue
