@@ -30,7 +30,7 @@ import numpy as np
 import pandas as pd
 
 import orchestrate
-from orchestrate.model import Settings, contact_half_width
+from orchestrate.model import Settings, contact_half_width, estimate
 from studies.paths import RESULTS_DIR
 from studies.report import Column, Report, command_line, fraction_of_b, signed_percent
 
@@ -106,6 +106,19 @@ def settled_from(table, tolerance=0.01):
     return max(settled)
 
 
+def poisson_shares(table):
+    """((h2, E2), the Timoshenko shell's bond-shear error on the finest mesh, p) of every
+    scene: p = E* nu2 (1 + nu2) / E2 (estimate.scene_ratios), the layer's Poisson stress
+    against its stretch."""
+    found = []
+    for (h2, E2), rows in table[table.model == "shell"].groupby(["h2", "E2"]):
+        scene = orchestrate.paper_scene(h2=h2, E2=E2)
+        share = estimate.scene_ratios(scene, scene.coatings[0])[4]
+        finest = rows.loc[rows.elements_thick.idxmax(), "bond_shear_error"]
+        found.append(((h2, E2), float(finest), share))
+    return found
+
+
 def write_report(table, out, command="python -m studies.bond_shear_mesh"):
     report = Report("The bond's peak shear against the interface elements", command,
                     data=[os.path.basename(os.path.splitext(out)[0]) + ".csv"])
@@ -117,6 +130,12 @@ def write_report(table, out, command="python -m studies.bond_shear_mesh"):
     report.finding(f"The 2D coating's peak bond shear stays within 1 % of its finest value "
                    f"from {settled_from(table):g} elements through the thickness on, in every "
                    f"scene.")
+    report.finding("The Timoshenko shell's bond shear on the finest mesh against the share "
+                   "-p/(1 + p) its membrane leaves out, p = E* nu2 (1 + nu2) / E2 (the layer's "
+                   "Poisson stress, docs/findings.md): " + "; ".join(
+                       f"h2 = {fraction_of_b(h2)}, E2 = {E2:g} E: {signed_percent(error, 1)} "
+                       f"against {signed_percent(-share / (1 + share), 1)}"
+                       for (h2, E2), error, share in poisson_shares(table)) + ".")
     for model, name in (("elastic", "2D coating"), ("shell", "Timoshenko shell"),
                         ("stretch_shell", "stretch shell")):
         for (h2, E2), _ in table.groupby(["h2", "E2"]):

@@ -59,10 +59,9 @@ MODULUS_SHARE = 0.1          # a stress of a tenth of the modulus: a strain of 1
 DESCENT_LIMIT = 0.01         # the descent over the smaller body's depth (small displacements)
 MISMATCH_LIMIT_DEG = 10.0    # the pairing's error ~ (1 - cos): 1.5 % at 10 degrees
 ELEMENTS_ACROSS = 10         # interface elements across a contact zone (its whole width)
-BOND_RESOLUTION = 2.0        # a patch's thickness over the interface elements at the contact's
-                             # edge: thinner, the 2D coating's peak bond shear moved by
-                             # several per cent when the elements were halved (the adequacy
-                             # report's table "The bond shear and the mesh")
+BOND_RESOLUTION = 4.0        # a patch's thickness over the interface elements at the contact's
+                             # edge from which the 2D coating's peak bond shear stays within
+                             # 1 % (studies/bond_shear_mesh.py: results/bond_shear_mesh.md)
 EDGE_SHARE = 0.5             # a peak this share of its zone's half-width off its centre is
                              # at the edge: a curved indenter's pressure peaks at the centre
 COATING_SHARE = 0.25         # a coating's thickness over its base's depth
@@ -139,8 +138,8 @@ def _bond_resolution_warnings(problem, a, say):
                 f"x1 = {say.length(edge)} (elements of {say.length(element)}; limit "
                 f"{BOND_RESOLUTION:g}): the bond's shear peaks there over about the "
                 "coating's thickness, so its largest value depends on the mesh: elements "
-                "of at most half the thickness there (element_size) resolve it",
-                thick, BOND_RESOLUTION))
+                f"of at most 1/{BOND_RESOLUTION:g} of the thickness there (element_size, "
+                "contact_elements) resolve it", thick, BOND_RESOLUTION))
     return warnings
 
 
