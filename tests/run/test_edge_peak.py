@@ -10,8 +10,12 @@ thickness, which neither shell resolves. The shells' a priori estimate does not 
 pressure it found. Each claim is checked against the 2D coating of the same scene.
 """
 
+from dataclasses import replace
+import math
+
 import pytest
 
+from orchestrate.model import estimate
 from orchestrate.model.scene_file import scene_and_settings
 from orchestrate.run.solve import solve
 from tests.conftest import PROJECT_DIR
@@ -20,8 +24,8 @@ pytestmark = pytest.mark.slow       # not in the everyday subset (make test-fast
 
 GALLERY = PROJECT_DIR / "orchestrate" / "scenes" / "gallery"
 NEAR_RIGID = GALLERY / "near_rigid_cylinder.toml"
-# a 10 um, 70 GPa lacquer on a polymer under steel: auto takes the stretch shell, whose
-# pressure gathers at the contact's edges (measured 19 % below the 2D coating's there)
+# a 10 um, 70 GPa lacquer on a polymer under steel: the stretch shell's pressure gathers
+# at the contact's edges (measured 19 % below the 2D coating's there)
 THIN_HARD_ON_POLYMER = (GALLERY / "steel_on_coated_polymer.toml",
                         {"coating.thickness": "10 um", "coating.E": "70 GPa"})
 
@@ -74,10 +78,17 @@ def test_a_pressure_peaking_at_the_centre_is_not_warned(near_rigid, model):
     assert "edge_contact_peak" not in _codes(summary)
 
 
-def test_auto_solves_again_with_the_2d_coating_where_its_shell_gathers_the_load(tmp_path):
+def test_auto_solves_again_with_the_2d_coating_where_its_shell_gathers_the_load(
+        tmp_path, monkeypatch):
     """auto's stretch shell, within its estimate before any work, gathers the pressure
     at the contact's edges: the patch is solved again as the 2D coating, which the
-    summary says, and the answer is the 2D coating's own run's."""
+    summary says, and the answer is the 2D coating's own run's. (The lacquer lies below
+    the calibrated span of E*/G2, where the estimate is no longer made and auto takes
+    the 2D coating at once: the estimate is widened to cover it, as it stood when the
+    run's check was the only one to catch it, the check a scene the estimate misjudges
+    still meets.)"""
+    monkeypatch.setattr(estimate, "PLANE",
+                        replace(estimate.PLANE, coating_compliance=(0.0, math.inf)))
     path, overrides = THIN_HARD_ON_POLYMER
     auto = _solve(path, overrides, tmp_path / "auto")
     choice = auto["model_choice"]           # the first choice's report, the patch as solved

@@ -84,6 +84,12 @@ def test_a_frictional_run_starts_from_a_frictionless_one(runs):
     assert warm.summary["iterations"] < cold.summary["iterations"]
 
 
+def _codes(warnings):
+    """The warnings' codes, coarse_bond aside (these scenes' coatings are thinner than
+    four interface elements at the contact's edge: tests/run/test_validity.py's)."""
+    return [w["code"] for w in warnings if w["code"] != "coarse_bond"]
+
+
 def test_auto_models_a_patch_under_friction_by_the_2d_coating():
     from orchestrate.run.plan import prepare
     plan = prepare(_sliding(0.3, "auto"), SETTINGS)
@@ -91,7 +97,7 @@ def test_auto_models_a_patch_under_friction_by_the_2d_coating():
     assert patch["model"] == "elastic"
     assert "friction" in patch["not_estimated"]
     shell = prepare(_sliding(0.3, "shell"), SETTINGS)
-    assert [w["code"] for w in shell.warnings] == ["model_uncalibrated"]
+    assert _codes(shell.warnings) == ["model_uncalibrated"]
     assert "friction" in shell.warnings[0]["message"]
 
 
@@ -122,7 +128,7 @@ def test_partial_slip_between_unlike_bodies_says_it_is_proportional_loading():
     coated = _sliding(0.5)
     coated = replace(coated, sliding=False,
                      load=replace(coated.load, tangential_force=0.2 * 0.5 * coated.load.force))
-    assert [w["code"] for w in prepare(coated, SETTINGS).warnings] == ["partial_slip_path"]
+    assert _codes(prepare(coated, SETTINGS).warnings) == ["partial_slip_path"]
     bare = replace(coated, coatings=())
     assert prepare(bare, SETTINGS).warnings == ()
 
@@ -151,7 +157,7 @@ def test_pressing_then_pulling_is_pulling_at_once_between_bodies_of_one_material
     load = replace(coated.load, tangential_force=0.25 * coated.load.force)
     for path_name, codes in (("at_once", ["partial_slip_path"]), ("pressed_first", [])):
         scene = replace(coated, sliding=False, load=replace(load, path=path_name))
-        assert [w["code"] for w in prepare(scene, SETTINGS).warnings] == codes
+        assert _codes(prepare(scene, SETTINGS).warnings) == codes
 
 
 def test_a_given_shift_is_the_force_it_carries_and_beyond_the_stick_limit_sliding():
