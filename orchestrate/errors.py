@@ -45,6 +45,24 @@ def _elided(message):
                   message)
 
 
+class LengthsError(ParameterError):
+    """A ParameterError found on the scene in b (the mesh's checks), whose message quotes
+    lengths: ``template`` names them ({name}), ``lengths`` gives them in b. The message
+    says them in b; ``in_units(length)`` is the same error with each length as the
+    function ``length`` (b -> text in the scene's units) says it."""
+
+    def __init__(self, template, key, **lengths):
+        self.template, self.lengths = template, lengths
+        super().__init__(self._text(lambda value: f"{value:.4g} b"), key)
+
+    def _text(self, length):
+        return self.template.format(**{name: length(value)
+                                       for name, value in self.lengths.items()})
+
+    def in_units(self, length):
+        return ParameterError(self._text(length), self.key)
+
+
 class WarnedBeforeWork(RuntimeError):
     """Under --strict, a run refused before any work for the warnings its scene already
     has (orchestrate/run/validity.py: a mesh too coarse for the predicted contact, a coating

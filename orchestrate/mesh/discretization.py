@@ -46,6 +46,7 @@ import math
 
 import numpy as np
 
+from orchestrate.errors import LengthsError
 from orchestrate.mesh.body_plans import base_plan, indenter_plan
 from orchestrate.model.estimate import predicted_half_width
 from orchestrate.model.geometry import IndenterFace, base_face, lowest_point
@@ -354,10 +355,11 @@ def discretize(scene, settings):
             if nodes[-1] <= s_lo or nodes[0] >= s_hi:
                 continue
             if nodes[0] < s_lo - 1e-12 or nodes[-1] > s_hi + 1e-12:
-                raise ParameterError(
-                    f"coating[{number}] [{coating.start!r}, {coating.end!r}] reaches beyond "
-                    "the part of the base the indenter's face covers: widen indenter.width or "
-                    "set contact_zone to leave the patch out", "indenter.width")
+                raise LengthsError(
+                    f"coating[{number}] from {{start}} to {{end}} reaches beyond the part of "
+                    "the base the indenter's face covers: widen indenter.width or set "
+                    "contact_zone to leave the patch out", "indenter.width",
+                    start=coating.start, end=coating.end)
             partners.append((nodes, coating.thickness, f"contact-coating{number}", number))
             in_zone.add(number)
         bare = _bare_stretches(s_lo, s_hi, [nodes for _, _, nodes in patches])
@@ -585,7 +587,8 @@ def _check_under_indenter(scene, place):
     hi = indenter.width if scene.symmetric else indenter.centre + indenter.width
     x = place[:, 0]
     if np.any(x < lo - 1e-9) or np.any(x > hi + 1e-9):
-        raise ParameterError(
-            f"indenter.width = {indenter.width!r}: the indenter's face (x1 in [{lo:g}, {hi:g}]) "
-            f"does not reach every point of the contact zone (x1 in [{x.min():.4g}, "
-            f"{x.max():.4g}]): widen it or narrow contact_zone", "indenter.width")
+        raise LengthsError(
+            "indenter.width = {width}: the indenter's face (x1 from {lo} to {hi}) does not "
+            "reach every point of the contact zone (x1 from {first} to {last}): widen it or "
+            "narrow contact_zone", "indenter.width", width=indenter.width, lo=lo, hi=hi,
+            first=x.min(), last=x.max())

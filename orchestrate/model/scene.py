@@ -23,12 +23,14 @@ patches counted from 1) and the allowed range. Scene and settings are written ne
 every result, so that any result can be reproduced.
 """
 
+from contextlib import contextmanager
 from dataclasses import asdict, dataclass, fields, replace
 import math
+import re
 from typing import Optional
 
 from orchestrate.errors import ParameterError
-from orchestrate.model.units import Units
+from orchestrate.model.units import FORCE, SCENE_KINDS, Units
 
 MODELS = ("shell", "stretch_shell", "elastic")
 SHELL_MODELS = ("shell", "stretch_shell")   # the coating on its mid-line
@@ -140,6 +142,31 @@ def _require(condition, key, message):
 
 def _finite(value):
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+# A part's key (coating[1].thickness, load.path[2].force) and the number quoted after it
+_QUOTED_VALUE = re.compile(r"\b((indenter|base|coating|load)(?:\[\d+\])?\.(?:path\[\d+\]\.)?"
+                           r"(\w+) = -?(?:\d+\.?\d*(?:e[-+]?\d+)?|inf|nan))(?=[ :,)]|$)")
+
+
+@contextmanager
+def values_in_units(units, revolution=False):
+    """A part's check whose message quotes values of a scene with units ("key = value")
+    says each value's unit after it: a value given as "3 um", or overridden in another
+    unit, is quoted in the file's unit (-0.003 mm), and a bare number is not read as b."""
+    try:
+        yield
+    except ParameterError as error:
+        if units.dimensionless:
+            raise
+        names = units.names(revolution)
+
+        def with_unit(match):
+            kind = SCENE_KINDS[match[2]].get(match[3])
+            if kind is None or match.string.startswith(f" {names[kind]}", match.end()):
+                return match[1]                 # no unit, or said already
+            return f"{match[1]} {names[kind]}"
+        raise ParameterError(_QUOTED_VALUE.sub(with_unit, str(error)), error.key) from None
 
 
 def _positive(key, value):
@@ -484,14 +511,15 @@ class Scene:
                  f"symmetric = {self.symmetric!r} must be true or false")
         _require(isinstance(self.axisymmetric, bool), "axisymmetric",
                  f"axisymmetric = {self.axisymmetric!r} must be true or false")
-        self.indenter.check("indenter.")
-        self.base.check("base.")
-        self.load.check("load.")
-        for number, coating in enumerate(self.coatings, start=1):
-            coating.check(f"coating[{number}].")
-        self._check_magnitudes()
-        self._check_layout()
-        self._check_friction()
+        with values_in_units(self.units, self.axisymmetric):
+            self.indenter.check("indenter.")
+            self.base.check("base.")
+            self.load.check("load.")
+            for number, coating in enumerate(self.coatings, start=1):
+                coating.check(f"coating[{number}].")
+            self._check_magnitudes()
+            self._check_layout()
+            self._check_friction()
 
     def _lengths(self):
         """(key, value) of every length of the scene, in its units."""
@@ -528,10 +556,14 @@ class Scene:
                      f"{given(key, value, size)}: at least {low:g} b{of_b}: "
                      "smaller, it cannot be meshed beside the others")
         load = self.load
-        if load.force is not None:
-            _require(load.force <= LARGEST_LOAD * self.modulus * b, "load.force",
-                     f"load.force = {load.force:g} must be at most {LARGEST_LOAD:g} E b = "
-                     f"{LARGEST_LOAD * self.modulus * b:g}: beyond, strains of millions")
+        if load.force is not None:       # per unit width, or an axisymmetric scene's total
+            per_b, force = ("b^2", b ** 2) if self.axisymmetric else ("b", b)
+            limit = LARGEST_LOAD * self.modulus * force
+            in_units = ("" if self.units.dimensionless else
+                        f" = {limit:g} {self.units.names(self.axisymmetric)[FORCE]}")
+            _require(load.force <= limit, "load.force",
+                     f"load.force = {load.force:g} must be at most {LARGEST_LOAD:g} E {per_b}"
+                     f"{in_units}: beyond, strains of millions")
         if load.displacement is not None:
             _require(load.displacement <= LARGEST_LOAD * b, "load.displacement",
                      f"load.displacement = {load.displacement:g} must be at most "

@@ -33,12 +33,13 @@ On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse lev
   against 3.8 s).
 """
 
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
 from orchestrate.ddm.coarse import coarse_settings
 from orchestrate.ddm.robin_parameters import contrast_exceeds, soft_coating
 from orchestrate.ddm.strategy import DIRECT, maps_would_pay, plan_strategy
-from orchestrate.errors import ParameterError
+from orchestrate.errors import LengthsError, ParameterError
 from orchestrate.mesh.discretization import discretize
 from orchestrate.mesh.problem_size import check_direct_size, check_size, estimated_dofs
 from orchestrate.model.estimate import (ANSWERS, contact_half_width, estimated_errors,
@@ -124,7 +125,8 @@ def _decided_models(scene, settings):
 def model_choice(scene, settings):
     """The choice of a run's "auto" patches (its report, or None), as prepare makes it,
     without the rest of the plan."""
-    return _decided_models(scene, settings)[1]
+    with lengths_in_units(scene):
+        return _decided_models(scene, settings)[1]
 
 
 def _coarse_left_out(problem, settings):
@@ -155,7 +157,24 @@ def _coarse_maps_left_out(coarse, settings):
 
 def prepare(scene, settings):
     """Everything checked and decided before any work (a Plan). ParameterError for
-    settings the scene cannot take or a problem too large."""
+    settings the scene cannot take or a problem too large, its lengths in the scene's
+    units."""
+    with lengths_in_units(scene):
+        return _prepared(scene, settings)
+
+
+@contextmanager
+def lengths_in_units(scene):
+    """A LengthsError of the scene made dimensionless (the mesh's checks) said in the
+    scene's units."""
+    try:
+        yield
+    except LengthsError as error:
+        say = Say(dimensionless(scene)[1], scene.units)
+        raise error.in_units(say.length) from None
+
+
+def _prepared(scene, settings):
     solved, model_choice, scales, settings, a, predicted = _decided_models(scene, settings)
     problem = discretize(solved, settings)
     # one level, its gamma, where the coarse level would not help (left_out), or has no

@@ -158,6 +158,42 @@ def test_unit_names_are_checked(tmp_path, table, words):
         assert word in str(error.value)
 
 
+@pytest.mark.parametrize("override, words", [
+    ({"coating[1].thickness": "-3 um"}, "coating[1].thickness = -0.003 mm must be positive"),
+    ({"coating[1].E": "-3 GPa"}, "coating[1].E = -3000.0 MPa must be positive"),
+    ({"coating[1].start": "2 cm"},
+     "coating[1].end = 5.0 mm must exceed coating[1].start = 20.0 mm"),
+], ids=["a length in um", "a stress in GPa", "two lengths in cm"])
+def test_a_refused_override_quotes_its_value_in_the_files_units(tmp_path, override, words):
+    """An override in another unit is converted to the file's before it is checked: the
+    error says the number it checked with that unit (a bare -0.003 would read as b)."""
+    scene, _ = load_scene(scene_file(tmp_path, "steel"))
+    with pytest.raises(ParameterError) as error:
+        apply_overrides(scene, override)
+    assert words.replace("must be positive", "must be a positive number") in str(error.value)
+
+
+def test_a_total_force_is_limited_in_e_b_squared(tmp_path):
+    """An axisymmetric scene's force is a total force (E b^2): the load limit is in it,
+    not in E b (a force per unit width), and says its value in the file's units."""
+    scene, _ = load_scene(PROJECT_DIR / "orchestrate/scenes/ball_mm.toml")
+    E, b = scene.base.E, scene.units.b                   # 210 GPa, 0.05 mm: E b^2 = 525 N
+    apply_overrides(scene, {"load.force": f"{0.9e6 * E * b * b} N"})
+    with pytest.raises(ParameterError) as error:
+        apply_overrides(scene, {"load.force": f"{2e6 * E * b * b} N"})   # under 1e6 E b
+    assert "at most 1e+06 E b^2 = 5.25e+08 MPa mm^2" in str(error.value)
+
+
+def test_a_patch_beyond_the_indenters_face_is_refused_in_the_files_units(tmp_path):
+    """Found on the mesh (in b), said in mm."""
+    scene, settings = scene_and_settings(scene_file(tmp_path, "steel"))
+    wide = apply_overrides(scene, {"coating[1].end": "12 mm", "base.width": "15 mm"})
+    with pytest.raises(ParameterError) as error:
+        orchestrate.run.plan.prepare(wide, settings)
+    assert "coating[1] from 0 mm to 12 mm reaches beyond" in str(error.value)
+    assert error.value.key == "indenter.width"
+
+
 def test_a_value_with_a_unit_in_a_scene_without_units_is_refused():
     with pytest.raises(ParameterError, match="has a unit, but the scene's lengths are in b"):
         orchestrate.paper_scene(h2="20 um")
