@@ -67,9 +67,11 @@ _SETTINGS_HELP = {
                     "its unit in a scene with [units] (\"10 um\"); default: sized to the "
                     "contact (--contact-elements)",
     "contact_elements": "where element_size is not given: interface elements across the a "
-                        "priori contact half-width, graded to b/16 away from the contact",
+                        "priori contact half-width, graded to element_size_far away from "
+                        "the contact",
     "element_size_far": "the interface elements' length away from the contact where it is "
-                        "sized (default b/16), in b or with its unit",
+                        "sized, in b or with its unit (default: b/16, or on a large body "
+                        "the reach of its contact range over 64 if longer)",
     "workers": "persistent FreeFEM workers, or a fresh process per solve (the naive baseline)",
     "worker_timeout": "seconds a worker may take to answer before the run fails",
     "memory_limit": "GiB the run may take (estimated before any work; default: 3/4 of the "

@@ -272,16 +272,14 @@ def face_spacing(scene, settings, face):
     """The FaceSpacing of a scene's interfaces at the settings' mesh level (sized to its
     contact first where element_size is not given)."""
     if settings.element_size is None:
-        settings = settings.sized_to(predicted_half_width(scene))
+        settings = settings.sized_to(predicted_half_width(scene), contact_reach(scene))
     level = settings.mesh_level
     fine = settings.element_size / level
     far = (settings.element_size_far or settings.element_size) / level
     if far <= fine:
         return settings, FaceSpacing(fine, fine)
     a = float(f"{predicted_half_width(scene):.12g}")     # as Settings.sized_to does
-    centre = face.s_of_x1(0.0 if scene.symmetric or scene.mirror_symmetric
-                          else scene.indenter.centre)
-    return settings, FaceSpacing(fine, far, centre, FINE_REACH * a)
+    return settings, FaceSpacing(fine, far, _grading_centre(scene, face), FINE_REACH * a)
 
 
 def simpson(nodes, stretch=1.0):
@@ -516,6 +514,21 @@ def _shell_coefficients(n, coating, c_v, c_w, c_gamma, face):
     if coating.model == "stretch_shell":
         row.append(face * coating.thickness * c_w)
     return np.tile(row, (n, 1)).astype(float)
+
+
+def contact_reach(scene):
+    """How far (b, along the base's face) contact may happen from the contact's centre
+    (_contact_range, _grading_centre): a full model's is its half's."""
+    face = base_face(scene.base)
+    s_lo, s_hi = _contact_range(scene, face)
+    centre = _grading_centre(scene, face)
+    return max(s_hi - centre, centre - s_lo, 0.0)
+
+
+def _grading_centre(scene, face):
+    """Where a face sized to the contact is finest: the contact's centre."""
+    return face.s_of_x1(0.0 if scene.symmetric or scene.mirror_symmetric
+                        else scene.indenter.centre)
 
 
 def _contact_range(scene, face):

@@ -69,6 +69,11 @@ ELEMENT_SIZE_RANGE = (1e-4, None)   # b: the interface elements at mesh level 1
 # b: the interface elements' length at mesh level 1 where the contact is wider than
 # CONTACT_ELEMENTS of them (the paper's 32 on its coating of length 2), and away from it
 DEFAULT_ELEMENT_SIZE = 0.0625
+# Away from the contact, a face sized to it needs no more elements than twice the paper's
+# density on its base (32 from the contact's centre to the base's end, 2 b away): the far
+# elements are at least that reach over FAR_ELEMENTS, so that a large body costs little
+# more than a small one
+FAR_ELEMENTS = 64
 # A contact set's update tolerance (active_set_tolerance, predicted_set_tolerance)
 SET_TOLERANCE_RANGE = (1e-12, 1.0, "relative change", "below eps_u it is eps_u; above 1 "
                        "the iterates say nothing of the contact set")
@@ -807,9 +812,11 @@ class Settings:
                                    # uniform; None: sized to the contact (sized_to)
     contact_elements: float = 16.0  # sized to the contact: at least this many interface
                                    # elements across the a priori contact half-width,
-                                   # graded to DEFAULT_ELEMENT_SIZE away from it
+                                   # graded to element_size_far away from it
     element_size_far: Optional[float] = None  # b: the elements' length away from the
-                                   # contact where sized_to refined it (None: uniform)
+                                   # contact where sized_to refined it (None:
+                                   # DEFAULT_ELEMENT_SIZE, or on a large body the contact
+                                   # range's reach over FAR_ELEMENTS if longer)
     workers: str = "persistent"    # FreeFEM workers: persistent, or a fresh process per solve
     worker_timeout: float = 600.0  # seconds a worker may take to answer before the run fails
     memory_limit: Optional[float] = None  # GiB the run may take; None: 3/4 of what is free
@@ -1023,16 +1030,21 @@ class Settings:
         DEFAULT_ELEMENT_SIZE until sized_to sizes it to a scene's contact."""
         return DEFAULT_ELEMENT_SIZE if self.element_size is None else self.element_size
 
-    def sized_to(self, a):
+    def sized_to(self, a, reach=0.0):
         """These settings with the interface elements sized to a contact of a priori
         half-width ``a`` (b) where element_size is not given: contact_elements across a,
-        never longer than DEFAULT_ELEMENT_SIZE, graded back to that away from the contact
-        (element_size_far); a default theta follows the finest element. Given, element_size
-        wins (uniform elements)."""
+        never longer than DEFAULT_ELEMENT_SIZE, graded away from the contact to
+        element_size_far, by default that or, where contact may happen up to ``reach``
+        (b) from the contact's centre, reach / FAR_ELEMENTS if longer; a default theta
+        follows the finest element. Given, element_size wins (uniform elements)."""
         if self.element_size is not None:
             return self
-        far = DEFAULT_ELEMENT_SIZE if self.element_size_far is None else self.element_size_far
-        fine = min(far, a / self.contact_elements) if a > 0 else far
+        if self.element_size_far is None:
+            ceiling = DEFAULT_ELEMENT_SIZE
+            far = max(ceiling, float(f"{reach / FAR_ELEMENTS:.12g}"))
+        else:
+            ceiling = far = self.element_size_far
+        fine = min(ceiling, a / self.contact_elements) if a > 0 else ceiling
         # 12 digits: a scene in mm and its twin in b and E get the same mesh bit for bit
         fine = max(float(f"{fine:.12g}"), ELEMENT_SIZE_RANGE[0])
         defaulted = self.theta == self.default_theta()[0]

@@ -40,7 +40,7 @@ from orchestrate.ddm.coarse import coarse_settings
 from orchestrate.ddm.robin_parameters import contrast_exceeds, soft_coating
 from orchestrate.ddm.strategy import DIRECT, maps_would_pay, plan_strategy
 from orchestrate.errors import LengthsError, ParameterError
-from orchestrate.mesh.discretization import discretize
+from orchestrate.mesh.discretization import contact_reach, discretize
 from orchestrate.mesh.problem_size import check_direct_size, check_size, estimated_dofs
 from orchestrate.model.estimate import (ANSWERS, contact_half_width, estimated_errors,
                                         not_estimated, predicted_half_width, worst_error)
@@ -117,7 +117,8 @@ def _decided_models(scene, settings):
     solved, scales = dimensionless(scene)
     a = contact_half_width(solved)           # the a priori estimate, made once
     predicted = predicted_half_width(solved, a)     # with a compliant coating's spread
-    settings = settings.sized_to(predicted)  # the mesh sized to the contact
+    settings = settings.sized_to(predicted, contact_reach(solved))  # the mesh sized to
+                                                                      # the contact
     solved, model_choice = choose_models(solved, settings, a)
     return solved, model_choice, scales, settings, a, predicted
 

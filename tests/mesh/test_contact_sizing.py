@@ -1,8 +1,9 @@
 """Interface elements sized to the contact (Settings.sized_to, discretization.py's
 FaceSpacing): contact_elements across the a priori half-width, graded back to b/16 away
-from it; an explicit element_size wins; the paper's scenes keep their b/16 mesh; the
+from it (on a large body, to its reach over FAR_ELEMENTS); an explicit element_size wins; the paper's scenes keep their b/16 mesh; the
 bodies' meshes have exactly the graded face's vertices."""
 
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -11,7 +12,8 @@ import pytest
 from orchestrate.mesh.discretization import FINE_REACH, FaceSpacing, discretize
 from orchestrate.mesh.meshes import body_mesh
 from orchestrate.model.estimate import contact_half_width
-from orchestrate.model.scene import DEFAULT_ELEMENT_SIZE, Settings
+from orchestrate.mesh.problem_size import estimated_dofs
+from orchestrate.model.scene import DEFAULT_ELEMENT_SIZE, FAR_ELEMENTS, Settings
 from orchestrate.model.scene_file import SCENES_DIR, paper_scene, scene_and_settings
 from orchestrate.run import prepare
 
@@ -35,12 +37,30 @@ def test_a_small_contact_gets_contact_elements_across_its_half_width(tin):
     settings = plan.problem.settings
     assert a < 0.5                       # the contact is much narrower than b
     assert settings.element_size == pytest.approx(a / Settings().contact_elements, rel=1e-11)
-    assert settings.element_size_far == DEFAULT_ELEMENT_SIZE
+    # the indenter's face reaches 2.5 mm = 5 b from the axis: far elements of 5 b / 64
+    assert settings.element_size_far == pytest.approx(5.0 / FAR_ELEMENTS, rel=1e-11)
+    assert settings.element_size_far > DEFAULT_ELEMENT_SIZE
     for interface in plan.problem.contacts:
         start, length = _element_lengths(interface)
         near = start + length <= FINE_REACH * a
         assert np.all(length[near] <= settings.element_size * 1.05)
-        assert np.all(length <= DEFAULT_ELEMENT_SIZE * 1.05)
+        assert np.all(length <= settings.element_size_far * 1.05)
+
+
+def test_a_large_body_is_meshed_coarsely_far_from_the_contact():
+    """The ball of ball_mm.toml on a disc 20 b wide (b about the contact radius): its
+    face's far elements are 20 b / FAR_ELEMENTS, not b/16, the contact's the same, and
+    the problem has fewer unknowns than with b/16 far away."""
+    scene, settings = scene_and_settings(SCENES_DIR / "ball_mm.toml")
+    graded = prepare(scene, settings).problem
+    capped = prepare(scene, replace(settings, element_size_far=DEFAULT_ELEMENT_SIZE)).problem
+    assert graded.settings.element_size == capped.settings.element_size == DEFAULT_ELEMENT_SIZE
+    assert graded.settings.element_size_far == pytest.approx(20.0 / FAR_ELEMENTS)
+    assert capped.settings.element_size_far is None             # b/16: uniform
+    count = {name: sum(i.size for i in problem.contacts) for name, problem in
+             (("graded", graded), ("capped", capped))}
+    assert count["graded"] < 0.5 * count["capped"]
+    assert sum(estimated_dofs(graded).values()) < sum(estimated_dofs(capped).values())
 
 
 def test_the_elements_grow_gradually_away_from_the_contact(tin):
