@@ -4,6 +4,9 @@ A body meshed by gmsh has its face's element size s0 near its interfaces, growin
 per unit distance up to s_max: about L / (c g) (1/s0 - 1/s_max) triangles along a fine
 face of length L and A / (c s_max^2) over the rest of its area A, with c = TRIANGLE_AREA
 (the area of a triangle of size s is about c s^2; the paper's bodies: 1380 triangles).
+On a face sized to the contact, s0 is the face's own graded size at each stretch
+(counted at the finest all along, the gallery's estimates were 1.5-3.8 times its
+meshes' unknowns).
 A P2 vector field has about 4 unknowns per triangle. Memory: MEMORY_PER_DOF per unknown
 (measured: 430 MB for an 86 000-dof body at mesh level 4, with MUMPS's factors) and
 MEMORY_PER_WORKER per FreeFEM process. A run is refused before any work when its
@@ -31,25 +34,60 @@ MEMORY_PER_INTERFACE_PAIR = 64.0   # bytes: two dense copies of (2 n)^2 doubles
 
 
 def body_triangles(plan):
-    """Estimated triangles of a gmsh body."""
+    """Estimated triangles of a gmsh body: along its face, each stretch at the face's own
+    element size there (a face sized to the contact is graded: BodyPlan.grading)."""
     level = plan.mesh_level
-    s0, s_max, growth = plan.face_size, plan.max_size / level, GROWTH / level
-    fine = 0.0
+    s_max, growth = plan.max_size / level, GROWTH / level
+    fine = 0.0                           # sum of length * (1/s0 - 1/s_max) along the face
     for piece in plan.face:
-        length = float(np.sum(np.linalg.norm(np.diff(piece.points, axis=0), axis=1)))
-        if piece.curve == "arc":
-            radius = math.hypot(*piece.points[0])
-            start, end = (math.atan2(p[0], p[1]) for p in (piece.points[0], piece.points[-1]))
-            length = radius * ((end - start) % (2 * math.pi))
-        fine += length if piece.label != "Free" else min(length, 2 * plan.near)
+        lengths, middles = _stretches(piece)
+        share = 1.0
+        if piece.label == "Free":        # fine only near the interfaces
+            share = min(1.0, 2 * plan.near / max(float(np.sum(lengths)), 1e-300))
+        sizes = face_size_at(plan, middles)
+        fine += share * float(np.sum(lengths * np.maximum(1 / sizes - 1 / s_max, 0.0)))
     if plan.shape == "roller":
         area = math.pi * (plan.radius ** 2 - plan.bore ** 2) * (0.5 if plan.half or plan.mirror else 1)
     else:
         face_height = plan.lowest if plan.shape == "indenter" else plan.face[0].points[0][1]
         area = (plan.right - plan.left) * abs(plan.far - face_height)
-    triangles = (fine / (TRIANGLE_AREA * growth) * max(0.0, 1 / s0 - 1 / s_max)
-                 + area / (TRIANGLE_AREA * s_max ** 2))
+    triangles = fine / (TRIANGLE_AREA * growth) + area / (TRIANGLE_AREA * s_max ** 2)
     return triangles * (2 if plan.mirror else 1)
+
+
+def face_size_at(plan, points):
+    """The mesh size gmsh is given on the face at ``points`` (meshes.py's size field)."""
+    sizes = np.full(len(points), float(plan.face_size))
+    if plan.grading is not None:
+        x_c, y_c, reach, growth, far = plan.grading
+        distance = np.hypot(points[:, 0] - x_c, points[:, 1] - y_c)
+        sizes = np.minimum(sizes + growth * np.maximum(distance - reach, 0.0), far)
+    return sizes
+
+
+# A free piece's curve sampled in this many stretches for its sizes
+FREE_SAMPLES = 64
+
+
+def _stretches(piece):
+    """(lengths, midpoints) of a face piece's stretches: an interface piece's edges; a
+    free line, profile (as its chord) or arc about the origin cut in FREE_SAMPLES."""
+    points = piece.points
+    if piece.curve == "edges":
+        return (np.linalg.norm(np.diff(points, axis=0), axis=1),
+                0.5 * (points[1:] + points[:-1]))
+    a, b = points[0], points[-1]
+    if piece.curve == "arc":
+        radius = math.hypot(*a)
+        start, end = (math.atan2(p[0], p[1]) for p in (a, b))
+        angles = start + ((end - start) % (2 * math.pi)) * (np.arange(FREE_SAMPLES) + 0.5) / FREE_SAMPLES
+        middles = radius * np.column_stack([np.sin(angles), np.cos(angles)])
+        length = radius * ((end - start) % (2 * math.pi))
+    else:
+        t = (np.arange(FREE_SAMPLES) + 0.5) / FREE_SAMPLES
+        middles = a + t[:, None] * (b - a)
+        length = float(np.linalg.norm(b - a))
+    return np.full(FREE_SAMPLES, length / FREE_SAMPLES), middles
 
 
 def estimated_dofs(problem):

@@ -866,14 +866,17 @@ class Settings:
                                     # level's workers have at most as many (run/plan.py)
     auto_two_level_mesh_level: int = 2  # auto iterates with two levels from this mesh
                                     # level up (there probing maps costs more)
-    auto_fallback_work: float = 1e9  # dof-columns: an iteration auto chose that stalls
+    auto_fallback_work: float = 5e8  # dof-columns: an iteration auto chose that stalls
                                     # falls back to the direct solve only where probing
                                     # every worker's map costs at most this much (its
-                                    # interface unknowns times its dofs, summed): minutes
-                                    # (the near-rigid cylinder at mesh level 3, 3.2e8,
-                                    # took 111 s and 1 GB solved directly; a 5 um 2D
-                                    # coating at level 3, 1.5e10, grew past 12 GB);
-                                    # beyond, the run stops stagnated and says why
+                                    # interface unknowns times its estimated dofs,
+                                    # summed): a few minutes (the near-rigid cylinder at
+                                    # mesh level 3, 3.2e8, took 111 s and 1 GB solved
+                                    # directly; a 5 um 2D coating on a roller at level 3,
+                                    # 2.4e9, ran a quarter of an hour and grew past
+                                    # 12 GB; at level 2, 7.3e8, its dense system would
+                                    # take 13.6 GB); beyond, the run stops stagnated and
+                                    # says why
     # the active-set loop:
     active_set_tolerance: float = 1e-2  # relative change at which the contact set is
                                     # updated (eps_u once a set recurs): enough to tell

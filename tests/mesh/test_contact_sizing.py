@@ -12,7 +12,7 @@ import pytest
 from orchestrate.mesh.discretization import FINE_REACH, FaceSpacing, discretize
 from orchestrate.mesh.meshes import body_mesh
 from orchestrate.model.estimate import contact_half_width
-from orchestrate.mesh.problem_size import estimated_dofs
+from orchestrate.mesh.problem_size import body_triangles, estimated_dofs
 from orchestrate.model.scene import DEFAULT_ELEMENT_SIZE, FAR_ELEMENTS, Settings
 from orchestrate.model.scene_file import SCENES_DIR, paper_scene, scene_and_settings
 from orchestrate.run import prepare
@@ -154,3 +154,21 @@ def test_an_indenter_left_of_the_axis_gets_its_graded_mesh():
     problem = prepare(scene, Settings()).problem
     mesh = body_mesh(problem.subdomains["base"].plan)
     assert len(mesh.cells_dict["triangle"]) > 0
+
+
+@pytest.mark.parametrize("path", [TIN, SCENES_DIR / "gallery" / "dlc_on_large_steel_part.toml",
+                                  SCENES_DIR / "ball_mm.toml", SCENES_DIR / "paper.toml"],
+                         ids=["TiN", "DLC on a large part", "ball", "paper"])
+def test_the_size_estimate_counts_a_graded_face_at_its_own_sizes(path):
+    """problem_size.body_triangles, which auto's costs and the memory check use, against
+    gmsh's meshes of the bodies: within 20 % (counted at the finest size all along the
+    face, TiN's base was estimated at 2.8 times its mesh); the paper's ungraded bodies
+    as before (the estimate's constant was fitted on them)."""
+    scene, settings = scene_and_settings(path)
+    problem = prepare(scene, settings).problem
+    for name, subdomain in problem.subdomains.items():
+        if subdomain.kind != "body" or subdomain.coating:
+            continue
+        mesh = body_mesh(subdomain.plan)
+        triangles = sum(len(block.data) for block in mesh.cells)
+        assert body_triangles(subdomain.plan) == pytest.approx(triangles, rel=0.2), name
