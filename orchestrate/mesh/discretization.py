@@ -344,6 +344,7 @@ def discretize(scene, settings):
         s0, s1 = face.s_of_x1(coating.start), face.s_of_x1(coating.end)
         patches.append((number, coating, spacing.nodes(s0, s1, patch_cap(coating), mirror)))
     patches.sort(key=lambda item: item[2][0])
+    patch_nodes = {number: nodes for number, _, nodes in patches}
 
     def partners_in(s_lo, s_hi):
         """(s-nodes, offset, name, patch number or None) of every face the indenter may
@@ -352,13 +353,12 @@ def discretize(scene, settings):
         for number, coating, nodes in patches:
             if nodes[-1] <= s_lo or nodes[0] >= s_hi:
                 continue
-            if nodes[0] < s_lo - 1e-12 or nodes[-1] > s_hi + 1e-12:
-                raise LengthsError(
-                    f"coating[{number}] from {{start}} to {{end}} reaches beyond the part of "
-                    "the base the indenter's face covers: widen indenter.width or set "
-                    "contact_zone to leave the patch out", "indenter.width",
-                    start=coating.start, end=coating.end)
-            partners.append((nodes, coating.thickness, f"contact-coating{number}", number))
+            # a patch reaching beyond the zone (a coating wider than the indenter's face):
+            # its top is a contact on the zone's part, from node to node, and free beyond
+            inside = nodes[(nodes >= s_lo - 1e-12) & (nodes <= s_hi + 1e-12)]
+            if len(inside) < 2:
+                continue
+            partners.append((inside, coating.thickness, f"contact-coating{number}", number))
             in_zone.add(number)
         bare = _bare_stretches(s_lo, s_hi, [nodes for _, _, nodes in patches])
         for number, (a, b) in enumerate(bare, start=1):
@@ -403,7 +403,7 @@ def discretize(scene, settings):
         if number is not None and scene.coatings[number - 1].model in SHELL_MODELS:
             coating = scene.coatings[number - 1]
             spec_stretch = face.stretch(0.5 * coating.thickness)
-            xi = (s - _xi_origin(scene, nodes)) * spec_stretch
+            xi = (s - _xi_origin(scene, patch_nodes[number])) * spec_stretch
             partner_side = Side(partner, xi, (  # the top face's w
                 _shell_coefficients(len(s), coating, 0.0, 1.0, 0.0, 0.5),))
         else:

@@ -85,6 +85,13 @@ CASES = {
     "coated roller, stretch shell": (_file("roller", model="stretch_shell"), TIGHT),
     "three patches, shell and 2D": (_file("discrete", **{"coating[2].model": "elastic"}), TIGHT),
     "full model, off-centre": (_off_centre_full_model(), TIGHT),
+    # a patch wider than the indenter's face: its top a contact under the face, free
+    # beyond (discretization.py's partners_in)
+    "a shell wider than the indenter's face": (
+        _file("cylinder", **{"indenter.width": 1.5, "coating[1].end": 3.0}), TIGHT),
+    "a 2D coating wider than the indenter's face": (
+        _file("cylinder", **{"indenter.width": 1.5, "coating[1].end": 3.0,
+                             "coating[1].model": "elastic"}), TIGHT),
 }
 
 

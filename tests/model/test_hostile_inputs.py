@@ -105,7 +105,7 @@ SCENE_KEYS = {
                                 "0.02 mm"], [0.01]),
     "symmetric": ("paper", ["yes", 1.0, [], {"a": 1.0}], [False]),
     "contact_zone": ("paper", ["all", [1.0], [2.0, 0.0], [math.nan, 2.0], [0.0, math.inf],
-                               [0.0, 1.0], [0.0, "2 MPa"], {"a": 1.0}], [[0.0, 3.0]]),
+                               [0.0, "2 MPa"], {"a": 1.0}], [[0.0, 3.0], [0.0, 1.0]]),
     "indenter.colour": ("paper", ["red"], []),
     "coatings.E": ("paper", [5.0], []),
 }

@@ -97,8 +97,6 @@ BAD = [
     ("a text for a modulus: no unit of it", _edit(BASE, "thickness = 0.125",
                                                   "thickness = 0.125\nE = \"stiff\""),
      ["coating[1].E = 'stiff'", "unknown unit", "stress is due"]),
-    ("a contact zone inside a patch", "contact_zone = [0.0, 0.5]\n" + BASE,
-     ["contact_zone = [0.0, 0.5]", "ends inside coating[1]"]),
     ("a bad setting", BASE + "[settings]\nrho = 2.0\n", ["settings.rho = 2.0", "(0, 1]"]),
     ("an unknown setting", BASE + "[settings]\nspeed = 2.0\n", ["settings.speed", "allowed"]),
     ("not TOML", "radius = = 2", ["not a valid TOML file"]),

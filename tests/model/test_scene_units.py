@@ -20,7 +20,8 @@ import pytest
 
 import orchestrate
 from orchestrate.cli import build_parser, scene_from_arguments
-from orchestrate.errors import ParameterError
+from orchestrate.errors import LengthsError, ParameterError
+from orchestrate.run.plan import lengths_in_units
 from orchestrate.model.scene_file import apply_overrides, load_scene, scene_and_settings
 from orchestrate.sweeps import load_sweep, point_scene
 from orchestrate.model.units import Units
@@ -184,14 +185,17 @@ def test_a_total_force_is_limited_in_e_b_squared(tmp_path):
     assert "at most 1e+06 E b^2 = 5.25e+08 MPa mm^2" in str(error.value)
 
 
-def test_a_patch_beyond_the_indenters_face_is_refused_in_the_files_units(tmp_path):
-    """Found on the mesh (in b), said in mm."""
-    scene, settings = scene_and_settings(scene_file(tmp_path, "steel"))
-    wide = apply_overrides(scene, {"coating[1].end": "12 mm", "base.width": "15 mm"})
+def test_a_check_made_on_the_mesh_in_b_is_said_in_the_files_units(tmp_path):
+    """The mesh's checks run on the scene in b (LengthsError); prepare says their
+    lengths in the scene's units (b = 2.5 mm here)."""
+    scene, _ = scene_and_settings(scene_file(tmp_path, "steel"))
     with pytest.raises(ParameterError) as error:
-        orchestrate.run.plan.prepare(wide, settings)
-    assert "coating[1] from 0 mm to 12 mm reaches beyond" in str(error.value)
+        with lengths_in_units(scene):
+            raise LengthsError("the face from {start} to {end}", "indenter.width",
+                               start=0.0, end=4.8)
+    assert str(error.value) == "the face from 0 mm to 12 mm"
     assert error.value.key == "indenter.width"
+    assert str(LengthsError("at {x}", "k", x=4.8)) == "at 4.8 b"     # unsaid: in b
 
 
 def test_a_value_with_a_unit_in_a_scene_without_units_is_refused():
