@@ -92,6 +92,10 @@ CASES = {
     "a 2D coating wider than the indenter's face": (
         _file("cylinder", **{"indenter.width": 1.5, "coating[1].end": 3.0,
                              "coating[1].model": "elastic"}), TIGHT),
+    "a shell across an off-centre indenter's face, full model": (
+        _file("cylinder", **{"symmetric": False, "indenter.centre": 0.7,
+                             "indenter.width": 1.5, "coating[1].start": -3.0,
+                             "coating[1].end": 3.0}), TIGHT),
 }
 
 
