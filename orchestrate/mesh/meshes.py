@@ -278,7 +278,8 @@ def _gmsh_body(plan):
         fields.setNumber(distance, "Sampling", 100 * level)
         size = fields.add("MathEval")
         on_face = f"{plan.face_size}"
-        if plan.grading is not None:       # the face's own length there (FaceSpacing)
+        if plan.grading is not None:       # the face's own length there (FaceSpacing;
+                                           # problem_size.face_size_at counts with it)
             x_c, y_c, reach, growth, far = plan.grading
             # a negative centre in parentheses: gmsh's parser refuses "x - -1.5" (and
             # aborts the process)
