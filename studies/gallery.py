@@ -74,8 +74,10 @@ def _monolithic_answers(problem, stresses):
             bond_n.append(float(np.max(np.abs(stresses[i][1]))))
     x, sigma = np.concatenate(x), np.concatenate(sigma)
     symmetric = problem.scene.symmetric
+    # a body of revolution's weights carry 2 pi r: the force is already the whole ring's
+    halves = 2.0 if symmetric and not problem.scene.axisymmetric else 1.0
     return {"peak_pressure": float(-np.min(sigma)),
-            "total_force": (2.0 if symmetric else 1.0) * force,
+            "total_force": halves * force,
             "half_width": contact_half_width(x, sigma) if symmetric else math.nan,
             "bond_normal": max(bond_n), "bond_shear": max(bond_t)}
 
@@ -85,7 +87,8 @@ def _loop_answers(result, scales):
     summary, stress = result.summary, scales.stress
     bonds = result.interface
     return {"peak_pressure": -summary["peak_contact_stress"] / stress,
-            "total_force": summary["total_force"] / (stress * scales.length),
+            "total_force": summary["total_force"] / (stress * scales.length ** (
+                2 if summary["scene"]["axisymmetric"] else 1)),
             "half_width": (summary["contact_half_width"] / scales.length
                            if result.summary["scene"]["symmetric"] else math.nan),
             "bond_normal": (float(bonds.sigma_n.abs().max()) / stress if len(bonds) else 0.0),

@@ -7,6 +7,7 @@ patches, a rigid indenter, force and displacement loads, scenes in mm and MPa.""
 
 import math
 
+import numpy as np
 import pytest
 
 from orchestrate.model import scene_and_settings
@@ -62,3 +63,37 @@ def test_the_loads_units_and_patches_span_what_engineers_pose(spans):
     assert any(row["scene"].indenter.rigid for row in spans)
     assert any(row["scene"].units.length == "mm" for row in spans)
     assert any(len(row["scene"].coatings) >= 2 for row in spans)     # discrete patches
+
+
+@pytest.mark.parametrize("name", ["paper.toml", "sphere.toml"])
+def test_the_monolithic_force_is_the_whole_bodys(name):
+    """A uniform unit pressure on the contact gives the force over the whole face the
+    contact points cover: twice the half model's in plane strain, pi r^2 about an axis
+    (whose weights already carry 2 pi r: doubling it, as a half model, was wrong)."""
+    from orchestrate.paths import SCENES_DIR
+    from studies.gallery import _monolithic_answers
+    scene, settings = scene_and_settings(SCENES_DIR / name)
+    problem = prepare(scene, settings).problem
+    contacts = [i for i in problem.interfaces if i.kind == "contact"]
+    stresses = [-np.ones(i.size) if i.kind == "contact" else np.zeros((2, i.size))
+                for i in problem.interfaces]
+    force = _monolithic_answers(problem, stresses)["total_force"]
+    x = np.concatenate([c.position[:, 0] for c in contacts])
+    expected = (math.pi * (x.max() ** 2 - x.min() ** 2) if scene.axisymmetric
+                else 2.0 * (x.max() - x.min()))
+    assert force == pytest.approx(expected, rel=1e-3)
+
+
+@pytest.mark.parametrize("axisymmetric, expected", [(False, 10.0 / (2.0 * 0.5)),
+                                                    (True, 10.0 / (2.0 * 0.25))])
+def test_the_loops_force_is_said_in_b_and_e(axisymmetric, expected):
+    """A force per unit width is E b, a body of revolution's E b^2."""
+    from types import SimpleNamespace
+    import pandas as pd
+    from studies.gallery import _loop_answers
+    summary = {"peak_contact_stress": -1.0, "total_force": 10.0, "contact_half_width": 0.1,
+               "scene": {"axisymmetric": axisymmetric, "symmetric": True}}
+    result = SimpleNamespace(summary=summary, interface=pd.DataFrame(
+        {"sigma_n": [], "sigma_t": []}))
+    answers = _loop_answers(result, SimpleNamespace(stress=2.0, length=0.5))
+    assert answers["total_force"] == pytest.approx(expected)
