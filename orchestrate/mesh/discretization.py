@@ -36,7 +36,8 @@ that is not given, it is sized to the contact (Settings.sized_to: contact_elemen
 the a priori half-width a) and graded back to element_size_far away from it: fine up to
 FINE_REACH a from the contact's centre, then growing by ALONG_GROWTH per unit length
 (FaceSpacing). A 2D coating has one layer of cells per b/8 of thickness, and cells at
-most MAX_ASPECT as wide as high, so a thin 2D coating refines its interface. A
+most MAX_ASPECT as wide as high where the face is fine, so a thin 2D coating refines its
+interface there; beyond, its cells grow from that width as the face's elements do. A
 mirror-symmetric full model (Scene.mirror_symmetric) gets mirror-symmetric elements and
 meshes.
 """
@@ -54,7 +55,11 @@ from orchestrate.model.scene import MODELS, SHELL_MODELS, ParameterError
 
 # The 2D coating: one layer of cells per b/8 of height, as the paper's 64 ... 512
 # triangles for h2 = b/8 ... b, and at least one; a cell at most MAX_ASPECT times as
-# wide as it is high (the cost the paper alludes to for h2 <= b/16).
+# wide as it is high (the cost the paper alludes to for h2 <= b/16) where the face is
+# fine. On a graded face the cells grow beyond that as the face's elements do: the
+# fields vary there as slowly along the layer as on the face, and a 2 um 2D coating over
+# a 5 mm face under a 0.2 mm contact had 3502 interface points at MAX_ASPECT throughout
+# against 752 so (peak pressure 3.5e-5, bond stresses 2e-4 apart; 3.8 s -> 1.7 s).
 COATING_LAYER_HEIGHT = 0.125
 MAX_ASPECT = 2.0
 # Faces sized to the contact: fine up to FINE_REACH a priori half-widths from the
@@ -237,8 +242,11 @@ class FaceSpacing:
         return self.far > self.fine
 
     def length(self, s, cap=math.inf):
+        """The element length at s; ``cap``: a thin 2D coating's widest cell, which holds
+        where the face is fine and grows from there as the face's elements do."""
         beyond = np.maximum(np.abs(s - self.centre) - self.reach, 0.0)
-        return np.minimum(np.minimum(self.fine + self.growth * beyond, self.far), cap)
+        finest = min(self.fine, cap)
+        return np.minimum(finest + self.growth * beyond, max(self.far, finest))
 
     def nodes(self, s0, s1, cap=math.inf, split_at_zero=False):
         """Element ends on [s0, s1], each element about length(s) (at most ``cap``) long;
@@ -334,7 +342,8 @@ def discretize(scene, settings):
     mirror = scene.mirror_symmetric
 
     def patch_cap(coating):
-        """A 2D patch's cells are at most MAX_ASPECT times as wide as its layers."""
+        """A 2D patch's cells are at most MAX_ASPECT times as wide as its layers where
+        the face is fine (FaceSpacing.length)."""
         if coating.model != "elastic":
             return math.inf
         return MAX_ASPECT * (coating.thickness / coating_layers(coating, level))

@@ -1,0 +1,96 @@
+"""A thin 2D coating on a large part (mesh/discretization.py, FaceSpacing.length): its
+cells are at most twice as wide as high where the face is fine, and grow from there as the
+face's elements do. The answers at the contact are those of cells held at that width over
+the whole face (the fields vary slowly along the layer away from the contact), for a
+fraction of the unknowns.
+
+The scene, tried as an engineer would pose it: a steel ball (R 5 mm) pressed with 10 N on
+PEEK carrying a 2 um DLC film (200 GPa) over its whole top, a body 25 contact radii wide;
+its 2D coating is what auto takes there (a film 55 times stiffer than its base lies
+outside the shells' calibrated span)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from orchestrate import solve
+from orchestrate.mesh.discretization import FaceSpacing
+from orchestrate.model.scene import Settings
+from orchestrate.model.scene_file import scene_and_settings
+
+pytestmark = pytest.mark.slow       # two runs of a few seconds
+
+FILM_ON_POLYMER = """
+axisymmetric = true
+[units]
+length = "mm"
+stress = "MPa"
+b = 0.2
+[indenter]
+radius = 5.0
+width = 2.0
+height = 2.0
+E = "210 GPa"
+nu = 0.3
+[base]
+width = 5.0
+height = 5.0
+E = "3.6 GPa"
+nu = 0.4
+[[coating]]
+start = 0.0
+end = 5.0
+thickness = "2 um"
+E = "200 GPa"
+nu = 0.2
+model = "elastic"
+[load]
+force = "10 N"
+"""
+
+
+def _held_at_the_cap(spacing, s, cap=math.inf):
+    """The element length at s with a 2D coating's widest cell held over the whole face
+    (the rule before its cells grew away from the contact)."""
+    beyond = np.maximum(np.abs(s - spacing.centre) - spacing.reach, 0.0)
+    return np.minimum(np.minimum(spacing.fine + spacing.growth * beyond, spacing.far), cap)
+
+
+@pytest.fixture(scope="module")
+def graded_and_held(tmp_path_factory):
+    """The film's run on the default face, and with its cells held at their widest width
+    over the whole face."""
+    path = tmp_path_factory.mktemp("film") / "film_on_polymer.toml"
+    path.write_text(FILM_ON_POLYMER)
+    scene, _ = scene_and_settings(path)
+    graded = solve(scene, Settings())
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(FaceSpacing, "length", _held_at_the_cap)
+        held = solve(scene, Settings())
+    return graded, held
+
+
+def _answers(result):
+    bond = result.interface
+    return {"pressure": -result.summary["peak_contact_stress"],
+            "bond_normal": float(bond.sigma_n.abs().max()),
+            "bond_shear": float(bond.sigma_t.abs().max()),
+            "descent": result.summary["descent"]}
+
+
+def test_a_thin_coatings_cells_grow_away_from_the_contact(graded_and_held):
+    graded, held = graded_and_held
+    unknowns = [sum(run.summary["dofs"].values()) for run in (graded, held)]
+    assert unknowns[0] < 0.7 * unknowns[1]         # measured 35k against 59k
+    # as fine at the contact (the count differs by the contact's measured width)
+    assert graded.summary["elements_across_contact"] == pytest.approx(
+        held.summary["elements_across_contact"], rel=0.01)
+
+
+@pytest.mark.parametrize("answer, tolerance", [("pressure", 2e-4), ("bond_normal", 2e-4),
+                                               ("bond_shear", 2e-3), ("descent", 1e-5)])
+def test_the_answers_at_the_contact_do_not_move(graded_and_held, answer, tolerance):
+    """Measured: 3.5e-5, 1.8e-5, 1.8e-4 and 4e-7 apart."""
+    graded, held = (_answers(run) for run in graded_and_held)
+    assert graded[answer] == pytest.approx(held[answer], rel=tolerance)
