@@ -110,8 +110,21 @@ def measure(label, scene):
 
 def measure_all(scenes, csv_path, jobs=2, progress=print):
     """Measure every (label, scene) not yet in ``csv_path``, appending rows as they
-    finish; return the whole table."""
-    done = set(pd.read_csv(csv_path).label) if os.path.exists(csv_path) else set()
+    finish; return the whole table. A row measured on another scene under the same label
+    (a scene file edited since) is dropped and measured again."""
+    done = set()
+    if os.path.exists(csv_path):
+        table = pd.read_csv(csv_path)
+        current = {label: json.dumps(to_dict(scene)) for label, scene in scenes}
+        stale = table.label.isin(current) & (table.scene != table.label.map(current))
+        if stale.any():
+            progress(f"{csv_path}: measuring again {', '.join(table.label[stale])} (its "
+                     "scene changed)")
+            table = table[~stale]
+            partial = f"{csv_path}.partial"
+            table.to_csv(partial, index=False)
+            os.replace(partial, csv_path)           # whole, or the old table
+        done = set(table.label)
     todo = [(label, scene) for label, scene in scenes if label not in done]
     with ProcessPoolExecutor(max_workers=jobs) as pool:
         futures = {pool.submit(measure, label, scene): label for label, scene in todo}
