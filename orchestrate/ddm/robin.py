@@ -714,7 +714,8 @@ class _ActiveSetLoop(_Loop):
             states = predicted_friction_states(self.problem, layout, self.strategy.first_contact)
         psi = np.concatenate([psi, states])
         previous_psi, update, seen, cycled = None, 0, {psi.tobytes()}, False
-        flipped = np.zeros(layout.contact_points, dtype=bool)   # since the last tightening
+        flipped = np.zeros(layout.contact_points, dtype=bool)   # since the last return
+        loose = None        # the tolerance a return's update waits below, restored once made
         tractions_lag = self.split_tractions_lag()
         tolerance = max(eps, knobs.predicted_set_tolerance if predicted
                         else knobs.active_set_tolerance)
@@ -773,18 +774,23 @@ class _ActiveSetLoop(_Loop):
                 # sets cycled, 129 iterations against 75 cold; held, 52; frictionless
                 # gallery scenes from a neighbour: the same or 3 more)
                 inexact = max(inexact, displacement_error)
-            if inexact < tolerance and not psi_settled and not partial_slip and tolerance > eps:
+            if inexact < tolerance and not psi_settled and not partial_slip:
                 turning = new_psi[:layout.contact_points] != psi[:layout.contact_points]
-                if np.any(flipped & turning):
+                if loose is None and tolerance > eps and np.any(flipped & turning):
                     # a point would return to the state an earlier update took it from:
-                    # the updates wait for a tolerance ten times tighter, as after a
-                    # cycle (a zone that barely touches enters and leaves whole on
-                    # inexact states: patterned pads whose second pad the cylinder barely
-                    # reaches walked through 28 sets, 221 iterations; so, 7 and 156)
-                    tolerance, flipped[:] = max(eps, 0.1 * tolerance), False
+                    # this update waits for a tolerance ten times tighter (a zone that
+                    # barely touches enters and leaves whole on inexact iterates: the
+                    # gallery's pads walked through 28 sets, 221 iterations; so, 17 and
+                    # 175). Only this one: held for the updates after it, a contact
+                    # zipping open a point an update paid it on each (copper pads on
+                    # PEEK: 94 iterations without the wait, 400 held, 153 so)
+                    loose, tolerance = tolerance, max(eps, 0.1 * tolerance)
+                    flipped[:] = False
                     x = x_next
                     continue
                 flipped |= turning
+                if loose is not None:
+                    tolerance, loose = loose, None
             if inexact < tolerance and not psi_settled:
                 if new_psi.tobytes() in seen and partial_slip:
                     # a cycle: the sticking points whose contact flips
