@@ -715,7 +715,7 @@ class _ActiveSetLoop(_Loop):
         psi = np.concatenate([psi, states])
         previous_psi, update, seen, cycled = None, 0, {psi.tobytes()}, False
         flipped = np.zeros(layout.contact_points, dtype=bool)   # since the last return
-        loose = None        # the tolerance a return's update waits below, restored once made
+        loose = None        # the tolerance before returns tightened it
         tractions_lag = self.split_tractions_lag()
         tolerance = max(eps, knobs.predicted_set_tolerance if predicted
                         else knobs.active_set_tolerance)
@@ -776,20 +776,21 @@ class _ActiveSetLoop(_Loop):
                 inexact = max(inexact, displacement_error)
             if inexact < tolerance and not psi_settled and not partial_slip:
                 turning = new_psi[:layout.contact_points] != psi[:layout.contact_points]
-                if loose is None and tolerance > eps and np.any(flipped & turning):
+                returning = np.any(flipped & turning)
+                if loose is None and tolerance > eps and returning:
                     # a point would return to the state an earlier update took it from:
-                    # this update waits for a tolerance ten times tighter (a zone that
-                    # barely touches enters and leaves whole on inexact iterates: the
-                    # gallery's pads walked through 28 sets, 221 iterations; so, 17 and
-                    # 175). Only this one: held for the updates after it, a contact
-                    # zipping open a point an update paid it on each (copper pads on
-                    # PEEK: 94 iterations without the wait, 400 held, 153 so)
+                    # the updates wait for a tolerance ten times tighter while they
+                    # return points (a zone that barely touches enters and leaves whole
+                    # on inexact iterates: the gallery's pads walked through 28 sets,
+                    # 221 iterations; so, 9 and 141). The first that returns none
+                    # restores it: held for good, a contact then zipping open a point an
+                    # update paid it on each (copper pads on PEEK: 94 iterations without
+                    # the wait, 400 held for good, 157 so)
                     loose, tolerance = tolerance, max(eps, 0.1 * tolerance)
-                    flipped[:] = False
                     x = x_next
                     continue
                 flipped |= turning
-                if loose is not None:
+                if loose is not None and not returning:
                     tolerance, loose = loose, None
             if inexact < tolerance and not psi_settled:
                 if new_psi.tobytes() in seen and partial_slip:

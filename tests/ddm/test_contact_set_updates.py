@@ -38,7 +38,7 @@ def test_a_zone_that_barely_touches_does_not_walk_the_contact_set():
     steel beside it and the next pad's edge, which it barely reaches. On inexact iterates
     that edge's points entered and left together, update after update: 28 set changes and
     221 iterations (measured). An update that would return a point to the state an earlier
-    one took it from waits for a tolerance ten times tighter: 17 and 175 (measured)."""
+    one took it from waits for a tolerance ten times tighter: 9 and 141 (measured)."""
     scene, settings = load_scene(SCENES_DIR / "gallery" / "patches_and_bare_base.toml")
     result = orchestrate.solve(scene, settings)
     summary = result.summary
@@ -53,7 +53,7 @@ def test_a_contact_zipping_open_is_not_held_to_the_tighter_tolerance():
     """A steel cylinder across 5 um copper pads on PEEK: the first sets' edge points return,
     then the contact opens a point an update. Held to the tighter tolerance for every
     update after a return, each of those took some 16 iterations: 400 in all (measured;
-    94 without the wait). Only the update that returns waits: 153 (measured)."""
+    94 without the wait). Held until an update returns no point: 157 (measured)."""
     copper_on_peek = {"base.E": "3.6 GPa", "base.nu": 0.4, "load.force": "20 N/mm"}
     for n in (1, 2, 3):
         copper_on_peek.update({f"coating[{n}].thickness": "5 um", f"coating[{n}].E": "120 GPa"})
