@@ -43,6 +43,7 @@ def test_a_zone_that_barely_touches_does_not_walk_the_contact_set():
     result = orchestrate.solve(scene, settings)
     summary = result.summary
     assert summary["converged"]
+    assert summary["total_force"] == pytest.approx(scene.load.force, rel=1e-6)
     assert summary["active_set_changes"] < 20 and summary["iterations"] < 200
     forces = {name: interface["force"] for name, interface in summary["interfaces"].items()}
     assert forces["contact-base1"] > 0.01 * forces["contact-coating1"]     # the bare steel
