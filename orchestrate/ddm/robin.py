@@ -621,12 +621,7 @@ def predicted_contact(problem, layout, half_width):
     if not half_width:
         return None
     x1 = np.concatenate([problem.interfaces[i].position[:, 0] for i in layout.contact_indices])
-    return np.abs(x1 - _contact_centre(problem.scene)) / half_width
-
-
-def _contact_centre(scene):
-    """x1 of the contact's centre before any load: under the indenter's lowest point."""
-    return 0.0 if scene.symmetric or scene.mirror_symmetric else scene.indenter.centre
+    return np.abs(x1 - problem.scene.contact_centre) / half_width
 
 
 def predicted_friction_states(problem, layout, half_width):
@@ -645,7 +640,7 @@ def predicted_friction_states(problem, layout, half_width):
     least = min(float(np.min(face.friction)) for face in faces)
     stick = half_width * math.sqrt(max(0.0, 1.0 - abs(q) / (least * scene.load.force)))
     distance = np.abs(np.concatenate([face.position[:, 0] for face in faces])
-                      - _contact_centre(scene))
+                      - scene.contact_centre)
     return np.where((distance > stick) & (distance <= half_width), np.sign(q), 0.0)
 
 

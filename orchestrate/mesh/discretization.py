@@ -536,8 +536,7 @@ def contact_reach(scene):
 
 def _grading_centre(scene, face):
     """Where a face sized to the contact is finest: the contact's centre."""
-    return face.s_of_x1(0.0 if scene.symmetric or scene.mirror_symmetric
-                        else scene.indenter.centre)
+    return face.s_of_x1(scene.contact_centre)
 
 
 def _contact_range(scene, face):

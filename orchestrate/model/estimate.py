@@ -256,7 +256,7 @@ def predicted_half_width(scene, a=None):
     force = scene.load.force
     if not force:
         return a
-    centre = 0.0 if scene.symmetric or scene.mirror_symmetric else scene.indenter.centre
+    centre = scene.contact_centre
     under = [c for c in scene.coatings if c.start <= centre <= c.end]
     radius = relative_radius(scene)
     if not under or math.isinf(radius):

@@ -744,6 +744,12 @@ class Scene:
 
     # ---- derived quantities -------------------------------------------------------
     @property
+    def contact_centre(self):
+        """x1 of the contact's centre before any load: under the indenter's lowest point
+        (on the axis of a half model)."""
+        return 0.0 if self.symmetric else self.indenter.centre
+
+    @property
     def mirror_symmetric(self):
         """A full model whose geometry and materials are symmetric about x1 = 0: its
         meshes are made mirror-symmetric, so that it equals its half model."""

@@ -98,7 +98,7 @@ def mesh_warnings(problem, say, a):
     contacts = [i for i in problem.interfaces if i.kind == "contact"]
     if a == 0 or not contacts:
         return []
-    centre = 0.0 if scene.symmetric else scene.indenter.centre
+    centre = scene.contact_centre
     low, high = centre - a, centre + a
     x1 = np.concatenate([i.position[:, 0] for i in contacts])
     warnings = []
@@ -152,7 +152,7 @@ def edge_elements(problem, a):
     if a == 0 or not contacts:
         return []
     x1 = np.concatenate([i.position[:, 0] for i in contacts])
-    centre = 0.0 if scene.symmetric else scene.indenter.centre
+    centre = scene.contact_centre
     edges = [centre + a] + ([] if scene.symmetric else [centre - a])
     found = []
     for n, coating in enumerate(scene.coatings, start=1):
