@@ -36,8 +36,9 @@ that is not given, it is sized to the contact (Settings.sized_to: contact_elemen
 the a priori half-width a) and graded back to element_size_far away from it: fine up to
 FINE_REACH a from the contact's centre, then growing by ALONG_GROWTH per unit length
 (FaceSpacing). A 2D coating has one layer of cells per b/8 of thickness, and cells at
-most MAX_ASPECT as wide as high where the face is fine, so a thin 2D coating refines its
-interface there; beyond, its cells grow from that width as the face's elements do. A
+most MAX_ASPECT as wide as high at its patch's ends and the a priori contact's edges, so
+a thin 2D coating refines its interface there; away from them its cells grow from that
+width as the face's elements do, up to the face's own length. A
 mirror-symmetric full model (Scene.mirror_symmetric) gets mirror-symmetric elements and
 meshes.
 """
@@ -55,11 +56,11 @@ from orchestrate.model.scene import MODELS, SHELL_MODELS, ParameterError
 
 # The 2D coating: one layer of cells per b/8 of height, as the paper's 64 ... 512
 # triangles for h2 = b/8 ... b, and at least one; a cell at most MAX_ASPECT times as
-# wide as it is high (the cost the paper alludes to for h2 <= b/16) where the face is
-# fine. On a graded face the cells grow beyond that as the face's elements do: the
-# fields vary there as slowly along the layer as on the face, and a 2 um 2D coating over
-# a 5 mm face under a 0.2 mm contact had 3502 interface points at MAX_ASPECT throughout
-# against 752 so (peak pressure 3.5e-5, bond stresses 2e-4 apart; 3.8 s -> 1.7 s).
+# wide as it is high (the cost the paper alludes to for h2 <= b/16) along a uniform
+# face. On a graded face only at a patch's ends and the a priori contact's edges, where
+# the bond's stresses vary over a few thicknesses; away from them the cells grow as the
+# face's elements do, up to the face's length: the fields vary there as slowly along the
+# layer as on the face (docs/method.md, "A mesh sized to the contact", has the counts).
 COATING_LAYER_HEIGHT = 0.125
 MAX_ASPECT = 2.0
 # Faces sized to the contact: fine up to FINE_REACH a priori half-widths from the
@@ -230,27 +231,35 @@ def element_nodes(s0, s1, count, split_at_zero=False):
 class FaceSpacing:
     """The interface elements' length along the base's face (arc length s): ``fine`` up
     to ``reach`` from ``centre``, then growing by ``growth`` per unit length up to
-    ``far``; uniform where far == fine."""
+    ``far``; uniform where far == fine. ``edges``: the a priori contact's edges (s), where
+    a thin 2D coating's cells are narrowest, as at its patch's ends."""
     fine: float
     far: float
     centre: float = 0.0
     reach: float = 0.0
     growth: float = ALONG_GROWTH
+    edges: tuple = ()
 
     @property
     def graded(self):
         return self.far > self.fine
 
-    def length(self, s, cap=math.inf):
+    def length(self, s, cap=math.inf, ends=()):
         """The element length at s; ``cap``: a thin 2D coating's widest cell, which holds
-        where the face is fine and grows from there as the face's elements do."""
+        at the patch's ``ends`` (s) and the contact's edges, and grows from there as the
+        face's elements do, up to the face's own length."""
         beyond = np.maximum(np.abs(s - self.centre) - self.reach, 0.0)
-        finest = min(self.fine, cap)
-        return np.minimum(finest + self.growth * beyond, max(self.far, finest))
+        face = np.minimum(self.fine + self.growth * beyond, max(self.far, self.fine))
+        narrowest = tuple(ends) + self.edges
+        if math.isinf(cap) or not narrowest:
+            return face
+        distance = np.min([np.abs(s - at) for at in narrowest], axis=0)
+        return np.minimum(face, cap + self.growth * distance)
 
-    def nodes(self, s0, s1, cap=math.inf, split_at_zero=False):
-        """Element ends on [s0, s1], each element about length(s) (at most ``cap``) long;
-        with ``split_at_zero`` (a mirror-symmetric model, centre 0) mirrored about 0."""
+    def nodes(self, s0, s1, cap=math.inf, split_at_zero=False, ends=()):
+        """Element ends on [s0, s1], each element about length(s, cap, ends) long (a
+        uniform face's at most ``cap`` throughout); with ``split_at_zero`` (a
+        mirror-symmetric model, centre 0) mirrored about 0."""
         if not self.graded:
             def count(length):
                 uniform = _count(length, self.fine)
@@ -258,16 +267,27 @@ class FaceSpacing:
                                                            _bounded(math.ceil(length / cap)))
             return element_nodes(s0, s1, count, split_at_zero)
         if split_at_zero and s0 < 0 < s1:
-            left = -self._graded(0.0, -s0, cap)[::-1]
-            return np.concatenate([left[:-1], self._graded(0.0, s1, cap)])
-        return self._graded(s0, s1, cap)
+            mirrored = tuple(-end for end in ends)
+            left = -self._graded(0.0, -s0, cap, mirrored)[::-1]
+            return np.concatenate([left[:-1], self._graded(0.0, s1, cap, ends)])
+        return self._graded(s0, s1, cap, ends)
 
-    def _graded(self, s0, s1, cap):
-        """Nodes at equal steps of the element count, the integral of 1/length(s)."""
-        finest = min(self.fine, cap)
-        samples = _bounded(int(min(20 * (s1 - s0) / finest, 2e6)) + 2, "samples of the face")
+    def _graded(self, s0, s1, cap, ends):
+        """Nodes at equal steps of the element count, the integral of 1/length(s)
+        (sampled 20 times per face element, and geometrically away from a patch's ends,
+        where a thin coating's cells are shorter)."""
+        samples = _bounded(int(min(20 * (s1 - s0) / self.fine, 2e6)) + 2, "samples of the face")
         s = np.linspace(s0, s1, samples)
-        density = 1.0 / self.length(s, cap)
+        finest = min(self.fine, cap)
+        if finest < self.fine:
+            # steps growing by 5 % from a twentieth of the end's cell to the face's
+            steps = finest / 20.0 * 1.05 ** np.arange(
+                math.ceil(math.log(20.0 * self.fine / finest) / math.log(1.05)) + 1)
+            offsets = np.cumsum(steps)
+            near = np.concatenate([[at - offsets, at + offsets]
+                                   for at in tuple(ends) + self.edges]).ravel()
+            s = np.union1d(s, near[(near > s0) & (near < s1)])
+        density = 1.0 / self.length(s, cap, ends)
         count_at = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1])
                                                     * np.diff(s))])
         count = _bounded(max(1, round(count_at[-1])))
@@ -287,7 +307,8 @@ def face_spacing(scene, settings, face):
     if far <= fine:
         return settings, FaceSpacing(fine, fine)
     a = float(f"{predicted_half_width(scene):.12g}")     # as Settings.sized_to does
-    return settings, FaceSpacing(fine, far, _grading_centre(scene, face), FINE_REACH * a)
+    centre = _grading_centre(scene, face)
+    return settings, FaceSpacing(fine, far, centre, FINE_REACH * a, edges=(centre - a, centre + a))
 
 
 def simpson(nodes, stretch=1.0):
@@ -342,8 +363,8 @@ def discretize(scene, settings):
     mirror = scene.mirror_symmetric
 
     def patch_cap(coating):
-        """A 2D patch's cells are at most MAX_ASPECT times as wide as its layers where
-        the face is fine (FaceSpacing.length)."""
+        """A 2D patch's cells are at most MAX_ASPECT times as wide as its layers at its
+        ends (FaceSpacing.length)."""
         if coating.model != "elastic":
             return math.inf
         return MAX_ASPECT * (coating.thickness / coating_layers(coating, level))
@@ -351,7 +372,9 @@ def discretize(scene, settings):
     patches = []
     for number, coating in enumerate(scene.coatings, start=1):
         s0, s1 = face.s_of_x1(coating.start), face.s_of_x1(coating.end)
-        patches.append((number, coating, spacing.nodes(s0, s1, patch_cap(coating), mirror)))
+        ends = tuple(face.s_of_x1(end) for end in scene.patch_ends(coating))
+        patches.append((number, coating, spacing.nodes(s0, s1, patch_cap(coating), mirror,
+                                                       ends)))
     patches.sort(key=lambda item: item[2][0])
     patch_nodes = {number: nodes for number, _, nodes in patches}
 

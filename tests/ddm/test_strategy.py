@@ -681,13 +681,13 @@ def test_a_bonds_sides_split_further_without_friction():
 def test_a_stalled_iteration_falls_back_only_where_the_maps_are_affordable():
     """auto's direct fallback probes every worker's map: where that costs more than
     auto_fallback_work dof-columns (interface unknowns times estimated dofs, summed) it
-    is not planned, and the rule says why. A 1 um 2D coating on a roller at mesh level
-    2: 1.05e9 dof-columns and a dense system of 7.5 GB (a 5 um one at level 3, on the
-    faces of before a thin coating's cells grew away from the contact, fell back and grew
-    past 12 GB); the paper's scene at level 2 keeps it, at 9e6."""
-    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "coated_roller.toml",
-                                  {"coating.model": "elastic", "coating.thickness": "1 um"})
-    big = prepare(scene, Settings(mesh_level=2)).strategy.inner_solve
+    is not planned, and the rule says why. A b/512 2D coating on the paper's uniform face
+    (its cells held at twice their height along the patch) at mesh level 2: 2.1e9
+    dof-columns and a dense system of 9 GiB; the paper's scene at level 2 keeps it, at
+    9e6. (A graded face refines a thin coating at its ends only: a 1 um film on the
+    gallery's roller at mesh level 2 now keeps it, at 1.1e8.)"""
+    big = prepare(paper_scene(model="elastic", h2=1 / 512),
+                  Settings(mesh_level=2)).strategy.inner_solve
     # one level there: its coarse level's maps would not pay either (plan.py)
     assert big.planned == DIRECT_OR_ITERATE and big.fallback is None
     assert "no direct fallback" in big.rule and "auto_fallback_work" in big.rule
@@ -700,16 +700,16 @@ def test_a_stalled_iteration_falls_back_only_where_the_maps_are_affordable():
 
 
 def test_a_direct_solve_whose_interface_system_outgrows_the_memory_is_refused():
-    """Asked for, the direct solve of a 1 um 2D coating on a roller (5552 interface
-    unknowns: its dense interface system about 1.8 GiB) under a 1 GiB memory_limit,
-    which the workers' own estimate (about 0.8 GiB) meets: refused before any work, naming
-    inner_solve; iterated, it is planned; auto plans no direct fallback there."""
-    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "coated_roller.toml",
-                                  {"coating.model": "elastic", "coating.thickness": "1 um"})
+    """Asked for, the direct solve of a b/512 2D coating on the paper's uniform face (6150
+    interface unknowns: its dense interface system about 2.3 GiB) under a 2 GiB
+    memory_limit, which the workers' own estimate (about 1.2 GiB) meets: refused before
+    any work, naming inner_solve; iterated, it is planned; auto plans no direct fallback
+    there."""
+    scene = paper_scene(model="elastic", h2=1 / 512)
     with pytest.raises(ParameterError) as refused:
-        prepare(scene, Settings(inner_solve="direct", memory_limit=1.0))
+        prepare(scene, Settings(inner_solve="direct", memory_limit=2.0))
     assert refused.value.key == "inner_solve" and "GiB" in str(refused.value)
-    assert prepare(scene, Settings(inner_solve="iterate", memory_limit=1.0))
-    auto = prepare(scene, Settings(memory_limit=1.0)).strategy.inner_solve
+    assert prepare(scene, Settings(inner_solve="iterate", memory_limit=2.0))
+    auto = prepare(scene, Settings(memory_limit=2.0)).strategy.inner_solve
     assert auto.fallback is None and "dense interface system" in auto.rule
     assert prepare(scene, Settings(memory_limit=8.0)).strategy.inner_solve.fallback == DIRECT

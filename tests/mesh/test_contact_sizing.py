@@ -107,14 +107,27 @@ def test_face_spacing_nodes():
     middle = np.abs(nodes[:-1] + 0.5 * lengths) < 0.2
     assert np.allclose(lengths[middle], 0.01, rtol=0.05)
     assert lengths.max() == pytest.approx(0.1, rel=0.1)
-    # a thin 2D coating's widest cell holds where the face is fine, and grows from there
-    # as the face's elements do (its fields vary as slowly there as the face's)
-    capped = spacing.nodes(0.0, 1.0, cap=0.004)
+    # a thin 2D coating's widest cell holds at the patch's ends, and grows from there as
+    # the face's elements do, up to the face's own (its fields vary as slowly along the
+    # layer as the face's, except over a few thicknesses at an end)
+    ends = (0.1, 1.0)
+    capped = spacing.nodes(*ends, cap=0.004, ends=ends)
     lengths, middle = np.diff(capped), capped[:-1] + 0.5 * np.diff(capped)
-    assert lengths[middle < 0.2].max() <= 0.004 * 1.05
-    assert np.all(lengths <= spacing.length(middle + 0.5 * lengths, cap=0.004) * 1.05)
-    assert np.max(lengths[1:] / lengths[:-1]) < 1.2
-    assert lengths.max() == pytest.approx(0.1, rel=0.1)
+    assert max(lengths[0], lengths[-1]) <= 0.004 * (1 + spacing.growth)    # grown over itself
+    assert lengths[np.abs(middle - 0.18) < 0.015] == pytest.approx(0.01, rel=0.05)
+    assert np.all(lengths <= spacing.length(middle, cap=0.004, ends=ends) * 1.1)
+    assert np.all(lengths <= spacing.length(middle) * 1.05)
+    assert np.max(lengths[1:] / lengths[:-1]) < 1.2 and np.min(lengths[1:] / lengths[:-1]) > 1 / 1.2
+    assert lengths.max() > 0.05                    # far from the ends and the contact
+    # and at the a priori contact's edges, where the bond's shear peaks
+    edged = FaceSpacing(0.01, 0.1, centre=0.0, reach=0.2, edges=(-0.3, 0.3)).nodes(
+        *ends, cap=0.004, ends=ends)
+    at_edge = np.argmin(np.abs(edged - 0.3))
+    assert np.diff(edged)[at_edge - 1:at_edge + 1].max() <= 0.004 * (1 + spacing.growth)
+    assert len(edged) > len(capped)
+    # a uniform face (element_size given, the paper's) holds the cap along the patch
+    uniform = FaceSpacing(0.01, 0.01).nodes(0.0, 1.0, cap=0.004, ends=(1.0,))
+    assert np.diff(uniform).max() == pytest.approx(0.004)
 
 
 def test_the_bodies_meshes_have_the_graded_faces_vertices(tin):

@@ -1,8 +1,10 @@
 """A thin 2D coating on a large part (mesh/discretization.py, FaceSpacing.length): its
-cells are at most twice as wide as high where the face is fine, and grow from there as the
-face's elements do. The answers at the contact are those of cells held at that width over
-the whole face (the fields vary slowly along the layer away from the contact), for a
-fraction of the unknowns.
+cells are at most twice as wide as high at the patch's ends and the a priori contact's
+edges, and grow from there as the face's elements do, up to the face's own length. Inside
+the contact they are then the face's elements (contact_elements across the a priori
+half-width, as on any face), where cells held at twice their height over the whole face
+put three times as many there: the answers differ by that resolution, and the unknowns
+by half.
 
 The scene, tried as an engineer would pose it: a steel ball (R 5 mm) pressed with 10 N on
 PEEK carrying a 2 um DLC film (200 GPa) over its whole top, a body 25 contact radii wide;
@@ -50,7 +52,7 @@ force = "10 N"
 """
 
 
-def _held_at_the_cap(spacing, s, cap=math.inf):
+def _held_at_the_cap(spacing, s, cap=math.inf, ends=()):
     """The element length at s with a 2D coating's widest cell held over the whole face
     (the rule before its cells grew away from the contact)."""
     beyond = np.maximum(np.abs(s - spacing.centre) - spacing.reach, 0.0)
@@ -60,7 +62,8 @@ def _held_at_the_cap(spacing, s, cap=math.inf):
 @pytest.fixture(scope="module")
 def graded_and_held(tmp_path_factory):
     """The film's run on the default face, and with its cells held at their widest width
-    over the whole face."""
+    over the whole face (the rule before the cells grew away from the contact, and from
+    the ends)."""
     path = tmp_path_factory.mktemp("film") / "film_on_polymer.toml"
     path.write_text(FILM_ON_POLYMER)
     scene, _ = scene_and_settings(path)
@@ -79,18 +82,24 @@ def _answers(result):
             "descent": result.summary["descent"]}
 
 
-def test_a_thin_coatings_cells_grow_away_from_the_contact(graded_and_held):
+def test_a_thin_coatings_cells_grow_away_from_its_ends_and_the_contacts_edges(graded_and_held):
     graded, held = graded_and_held
     unknowns = [sum(run.summary["dofs"].values()) for run in (graded, held)]
-    assert unknowns[0] < 0.7 * unknowns[1]         # measured 35k against 59k
-    # as fine at the contact (the count differs by the contact's measured width)
-    assert graded.summary["elements_across_contact"] == pytest.approx(
-        held.summary["elements_across_contact"], rel=0.01)
+    assert unknowns[0] < 0.6 * unknowns[1]         # measured 33k against 59k
+    # the face's elements across the contact (16 per a priori half-width): 32.4 measured,
+    # against 101 with the cells held at twice their height
+    across = [run.summary["elements_across_contact"][0] for run in (graded, held)]
+    assert 28 < across[0] < 40 and across[1] > 2.5 * across[0]
 
 
-@pytest.mark.parametrize("answer, tolerance", [("pressure", 2e-4), ("bond_normal", 2e-4),
-                                               ("bond_shear", 2e-3), ("descent", 1e-5)])
-def test_the_answers_at_the_contact_do_not_move(graded_and_held, answer, tolerance):
-    """Measured: 3.5e-5, 1.8e-5, 1.8e-4 and 4e-7 apart."""
+@pytest.mark.parametrize("answer, tolerance", [("pressure", 1e-3), ("bond_normal", 1e-3),
+                                               ("bond_shear", 3e-2), ("descent", 1e-4)])
+def test_the_answers_at_the_contact_differ_by_its_resolution(graded_and_held, answer,
+                                                             tolerance):
+    """Measured at mesh level 1: 4.3e-4, 4.2e-4, 1.5e-2 and 1.6e-6 apart; at mesh level 2,
+    where both meshes are finer, 9.5e-5, 1.7e-4, 7.1e-3 and 3.4e-7 (the difference
+    shrinks with the contact's elements). The bond shear's peak, at the contact's edge,
+    is not resolved by either (the warning coarse_bond): 13.90 and 13.69 MPa at level 1,
+    13.97 and 13.87 at level 2."""
     graded, held = (_answers(run) for run in graded_and_held)
     assert graded[answer] == pytest.approx(held[answer], rel=tolerance)
