@@ -78,7 +78,7 @@ def choose_models(scene, settings, a=None):
             try:
                 unknowns[model] = round(estimated_unknowns(scene.with_models(trial), settings))
             except ParameterError as error:     # its mesh too fine for the machine (a
-                refused[model] = error          # micron-thin 2D coating at mesh level 2)
+                refused[model] = error          # nanometre-thin 2D coating, uniform faces)
         passing = [m for m in FIDELITY if m in unknowns
                    and worst_error(errors[m], answers) <= tolerance]
         if not passing:                 # elastic always passes the tolerance: refused too
