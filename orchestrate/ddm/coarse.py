@@ -31,6 +31,7 @@ level 3.
 """
 
 from dataclasses import replace
+import math
 
 import numpy as np
 from scipy.linalg import lu_factor, lu_solve
@@ -38,6 +39,7 @@ from scipy.sparse import csr_matrix
 
 from orchestrate.ddm.robin import first_contact_set, robin_laws, updated_contact_set
 from orchestrate.ddm.robin_parameters import side_parameters
+from orchestrate.mesh.discretization import discretize
 
 
 def _coarsening(settings):
@@ -60,6 +62,15 @@ def coarse_settings(settings):
                    workers="persistent", element_size=coarse_element_size(settings),
                    element_size_far=(settings.element_size_far * _coarsening(settings)
                                      if settings.element_size_far else None))
+
+
+def coarse_problem(scene, settings):
+    """The coarse level's problem of a fine run's scene and settings. Its thin 2D
+    coatings' cells are its face's elements, not narrowed at their ends and the
+    contact's edges: the coarse level models the smooth modes, and the narrow cells were
+    most of its interface unknowns, each a back-substitution to probe (docs/method.md,
+    "Two levels", has the gallery's pads with and without them)."""
+    return discretize(scene, coarse_settings(settings), cell_aspect=math.inf)
 
 
 def coarse_laws(coarse, layout, psi):

@@ -350,9 +350,12 @@ def coating_layers(coating, level):
                     "layers of cells")
 
 
-def discretize(scene, settings):
+def discretize(scene, settings, cell_aspect=MAX_ASPECT):
     """The subdomains and interfaces of a scene at the settings' mesh (every patch's
-    model decided: run/plan.py's choose_models turns "auto" into one)."""
+    model decided: run/plan.py's choose_models turns "auto" into one).
+    ``cell_aspect``: a thin 2D coating's cells at most this many times as wide as high
+    (at its ends and the contact's edges on a graded face); a coarse level takes them
+    wider (it models the loop's smooth modes only)."""
     undecided = [n for n, c in enumerate(scene.coatings, start=1) if c.model not in MODELS]
     if undecided:
         raise ValueError(f"coating{undecided[0]}: model {scene.coatings[undecided[0] - 1].model!r} "
@@ -363,11 +366,11 @@ def discretize(scene, settings):
     mirror = scene.mirror_symmetric
 
     def patch_cap(coating):
-        """A 2D patch's cells are at most MAX_ASPECT times as wide as its layers at its
-        ends (FaceSpacing.length)."""
+        """A 2D patch's cells are at most cell_aspect times as wide as its layers at its
+        ends and the contact's edges (FaceSpacing.length)."""
         if coating.model != "elastic":
             return math.inf
-        return MAX_ASPECT * (coating.thickness / coating_layers(coating, level))
+        return cell_aspect * (coating.thickness / coating_layers(coating, level))
 
     patches = []
     for number, coating in enumerate(scene.coatings, start=1):

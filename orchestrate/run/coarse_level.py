@@ -7,12 +7,11 @@ import contextlib
 
 import numpy as np
 
-from orchestrate.ddm.coarse import CoarseCorrection, coarse_laws, coarse_settings
+from orchestrate.ddm.coarse import CoarseCorrection, coarse_laws, coarse_problem
 from orchestrate.ddm.interface_system import InterfaceSystem
 from orchestrate.ddm.robin import robin_data
 from orchestrate.ddm.state import StateLayout
 from orchestrate.files.folders import WorkFolder
-from orchestrate.mesh.discretization import discretize
 from orchestrate.workers.session import Session
 from orchestrate.workers.subdomains import Subdomains, written_inputs
 
@@ -20,8 +19,9 @@ from orchestrate.workers.subdomains import Subdomains, written_inputs
 class CoarseLevel:
     """The coarse level of a fine run's ``problem``: ``coarse``, the problem the run's
     plan made of its scene at mesh level 1 (on level 1 itself, with longer interface
-    elements: coarse.coarse_settings), with the fine penalty and Robin parameter, whose
-    interfaces pair up with the fine ones (the strategy has two levels only then);
+    elements; a thin 2D coating's cells the face's: coarse.coarse_problem), with the
+    fine penalty and Robin parameter, whose interfaces pair up with the fine ones (the
+    strategy has two levels only then);
     without it, made here of the problem's settings. Its workers start, and are asked
     for their maps, at once; they probe while the fine run meshes and starts its own,
     and ``correction`` collects the maps and stops them. ``newton_steps``: the coarse
@@ -31,7 +31,7 @@ class CoarseLevel:
     def __init__(self, problem, coarse=None, newton_steps=None):
         self.fine_layout = StateLayout(problem.interfaces)
         self.coarse = (coarse if coarse is not None
-                       else discretize(problem.scene, coarse_settings(problem.settings)))
+                       else coarse_problem(problem.scene, problem.settings))
         self.layout = StateLayout(self.coarse.interfaces)
         self.newton_steps = (newton_steps if newton_steps is not None
                              else problem.settings.coarse_newton_steps)

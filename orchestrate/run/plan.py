@@ -36,7 +36,7 @@ On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse lev
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
-from orchestrate.ddm.coarse import coarse_settings
+from orchestrate.ddm.coarse import coarse_problem
 from orchestrate.ddm.robin_parameters import contrast_exceeds, soft_coating
 from orchestrate.ddm.strategy import DIRECT, maps_would_pay, plan_strategy
 from orchestrate.errors import LengthsError, ParameterError
@@ -183,7 +183,7 @@ def _prepared(scene, settings):
     frictional = settings.inner_solve == AUTO and settings.two_levels and scene.frictional
     left_out, coarse = _coarse_left_out(problem, settings), None
     if left_out is None and settings.two_levels and not frictional:
-        coarse = discretize(solved, coarse_settings(settings))
+        coarse = coarse_problem(solved, settings)
         left_out = _coarse_maps_left_out(coarse, settings)
     if left_out or frictional:
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
