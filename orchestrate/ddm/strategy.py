@@ -192,15 +192,17 @@ def _solved_directly(sides, direct):
     return tuple(side.solved_directly() for side in sides) if direct else sides
 
 
-def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_out=None):
+def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_out=None,
+                  coarse_taken=None):
     """The Strategy of ``problem`` (a run's discrete problem, in b and E) under
     ``settings``; ``coarse``: the coarse level's problem where two levels are asked
     (Settings.two_levels), else None; ``half_width``: the a priori contact half-width
     (b), if known; ``coarse_left_out``: why auto left out the coarse level its mesh
-    level would take (run/plan.py), or None."""
+    level would take, ``coarse_taken``: why it took one its mesh level would not
+    (run/plan.py), or None."""
     paper = settings.method == PAPER
     theta, default_rule = settings.default_theta()
-    inner_solve = _inner_solve(settings, problem, coarse, coarse_left_out)
+    inner_solve = _inner_solve(settings, problem, coarse, coarse_left_out, coarse_taken)
     gamma, gamma_rule = settings.robin_choice()
     inside = _bonds_inside(settings, problem, inner_solve, half_width)
     if inside and inner_solve.pending:
@@ -289,7 +291,7 @@ def _unknowns_and_dofs(problem):
                        for i, _ in problem.sides_of(name)), dofs[name]) for name in dofs}
 
 
-def _probe_work(problem):
+def probe_work(problem):
     """What probing every worker's Robin map costs: its interface unknowns (a
     back-substitution each) times its estimated dofs, summed (dof-columns)."""
     return float(sum(n * dofs for n, dofs in _unknowns_and_dofs(problem).values()))
@@ -321,7 +323,7 @@ def _workers(problem, inside):
     return others + ((COATED_BASE, coated),)
 
 
-def _inner_solve(settings, problem, coarse, coarse_left_out=None):
+def _inner_solve(settings, problem, coarse, coarse_left_out=None, coarse_taken=None):
     """The InnerSolve the settings ask of the active-set loop, where the scene allows it
     (two levels need interfaces that pair up with the coarse level's)."""
     asked = settings.inner_solve
@@ -334,7 +336,7 @@ def _inner_solve(settings, problem, coarse, coarse_left_out=None):
                           "(partial slip)", None, ITERATE)
     fallback, affordable = None, ""
     if asked == "auto" and settings.workers == "persistent":
-        work, memory = _probe_work(problem), interface_system_memory(problem)
+        work, memory = probe_work(problem), interface_system_memory(problem)
         limit, what = memory_limit(settings)
         if work > settings.auto_fallback_work:
             affordable = (f"; no direct fallback: probing every worker's map would cost "
@@ -346,8 +348,9 @@ def _inner_solve(settings, problem, coarse, coarse_left_out=None):
         else:
             fallback = DIRECT
     if settings.two_levels:
-        rule = ("asked" if asked == TWO_LEVEL else f"auto: mesh_level {settings.mesh_level}"
-                f" >= auto_two_level_mesh_level {settings.auto_two_level_mesh_level}")
+        rule = ("asked" if asked == TWO_LEVEL else coarse_taken or
+                f"auto: mesh_level {settings.mesh_level} >= auto_two_level_mesh_level "
+                f"{settings.auto_two_level_mesh_level}")
         if coarse is not None and paired(problem.interfaces, coarse.interfaces):
             return InnerSolve(asked, TWO_LEVEL, rule + affordable, fallback, TWO_LEVEL)
         return InnerSolve(asked, ITERATE, rule + ", but the coarse level's interfaces do not "

@@ -15,7 +15,7 @@
 
 import json
 import math
-from dataclasses import fields
+from dataclasses import fields, replace
 
 import numpy as np
 import pytest
@@ -579,6 +579,25 @@ def test_auto_leaves_the_coarse_level_out_where_its_maps_would_not_pay():
     # a larger auto_direct_unknowns makes the coarse maps pay
     scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "tin_on_steel.toml")
     assert prepare(scene, Settings(mesh_level=2, auto_direct_unknowns=1000)).strategy.two_levels
+
+
+def test_auto_takes_two_levels_below_their_mesh_level_where_the_coarse_level_is_cheap():
+    """On mesh level 1 auto takes two levels where the loop would iterate and the coarse
+    level's maps cost at most COARSE_WORK_SHARE of the fine ones to probe: the gallery's
+    1 um pads (0.04: its fine level narrows the pads' cells, its coarse level does not),
+    none of the other gallery scenes (0.26-0.31, one level the faster there) nor the
+    paper's scene, solved directly."""
+    for path in sorted((SCENES_DIR / "gallery").glob("*.toml")):
+        scene, settings = scene_and_settings(path)
+        inner = prepare(scene, settings).strategy.inner_solve
+        pads = path.stem == "patches_and_bare_base"
+        assert (inner.planned == TWO_LEVEL) == pads, path.stem
+        if pads:
+            assert "the coarse level's maps cost 0.037 of the fine ones" in inner.rule
+            # asked to iterate, it does
+            assert prepare(scene, replace(settings, inner_solve="iterate")
+                           ).strategy.inner_solve.planned == ITERATE
+    assert prepare(paper_scene(), Settings()).strategy.inner_solve.planned == DIRECT_OR_ITERATE
 
 
 def test_auto_leaves_the_coarse_level_out_under_a_soft_coating():
