@@ -166,7 +166,10 @@ def _cheap_coarse_level(solved, problem, settings):
     if (settings.inner_solve != AUTO or settings.two_levels or settings.method == "paper"
             or settings.workers != "persistent" or maps_would_pay(problem, settings)):
         return settings, None
-    trial = replace(settings, auto_two_level_mesh_level=settings.mesh_level)
+    try:
+        trial = replace(settings, auto_two_level_mesh_level=settings.mesh_level)
+    except ParameterError:          # elements too short for the two levels' default gamma
+        return settings, None
     share = probe_work(coarse_problem(solved, trial)) / probe_work(problem)
     if share > COARSE_WORK_SHARE:
         return settings, None
