@@ -57,7 +57,7 @@ def coarse_settings(settings):
     the fine run's penalty and Robin parameter, probed and solved directly by persistent
     workers of its own, whatever the fine run's workers (a fresh process per solve keeps
     no factorisation to probe)."""
-    return replace(settings, mesh_level=1, theta=settings.theta,
+    return replace(settings, mesh_level=1, theta=float(settings.theta),   # kept: given
                    robin=settings.robin_parameter, inner_solve="direct",
                    workers="persistent", element_size=coarse_element_size(settings),
                    element_size_far=(settings.element_size_far * _coarsening(settings)

@@ -775,6 +775,15 @@ class Scene:
         return 0.5 * self.load.force if self.symmetric else self.load.force
 
 
+class DefaultTheta(float):
+    """Settings.theta where it was not given: the default of its mesh, worked out again
+    by a Settings made from it with another mesh (dataclasses.replace), unlike a theta
+    given, which is kept."""
+
+    def __reduce__(self):                # pickled (a sweep's processes) as itself
+        return DefaultTheta, (float(self),)
+
+
 @dataclass(frozen=True)
 class Settings:
     """How the scene is solved: penalty, Robin loop, mesh; then the strategy's knobs,
@@ -960,13 +969,16 @@ class Settings:
                  "contact_elements", f"contact_elements = {self.contact_elements!r} must lie "
                  "in [1, 1e4]: interface elements across the a priori contact half-width")
         self._check_knobs()
-        if self.theta is None:          # the default, tied to the mesh (frozen: set once)
+        if self.theta is None or isinstance(self.theta, DefaultTheta):
+            # the default, tied to the mesh: set here, and again where replace() changed
+            # the mesh (a default kept from mesh level 1 had the gallery's level-2 runs
+            # under level 1's penalty)
             theta, rule = self.default_theta()
             _require(THETA_RANGE[0] <= theta <= THETA_RANGE[1], "theta_per_length",
                      f"theta_per_length = {self.theta_per_length!r} gives the default theta = "
                      f"{rule} = {theta:g} b/E, beyond theta's range [{THETA_RANGE[0]:g}, "
                      f"{THETA_RANGE[1]:g}]: give another one, or theta")
-            object.__setattr__(self, "theta", theta)
+            object.__setattr__(self, "theta", DefaultTheta(theta))
         _require(_finite(self.theta) and THETA_RANGE[0] <= self.theta <= THETA_RANGE[1], "theta",
                  f"theta = {self.theta!r} must lie in [{THETA_RANGE[0]:g}, {THETA_RANGE[1]:g}] "
                  "(b/E): a softer penalty is no contact law (the bodies pass through each "
@@ -1052,10 +1064,8 @@ class Settings:
         fine = min(ceiling, a / self.contact_elements) if a > 0 else ceiling
         # 12 digits: a scene in mm and its twin in b and E get the same mesh bit for bit
         fine = max(float(f"{fine:.12g}"), ELEMENT_SIZE_RANGE[0])
-        defaulted = self.theta == self.default_theta()[0]
         return replace(self, element_size=fine,
-                       element_size_far=far if far > fine * (1 + 1e-12) else None,
-                       theta=None if defaulted else self.theta)
+                       element_size_far=far if far > fine * (1 + 1e-12) else None)
 
     def default_theta(self):
         """(theta where not given, b/E; the rule that gives it, in words): the paper's

@@ -5,6 +5,7 @@ bodies' meshes have exactly the graded face's vertices."""
 
 from dataclasses import replace
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -76,6 +77,23 @@ def test_the_default_penalty_follows_the_finest_element(tin):
     plan, _ = tin
     settings = plan.problem.settings
     assert settings.theta == pytest.approx(settings.theta_per_length * settings.element_size)
+
+
+def test_a_default_penalty_follows_a_mesh_changed_by_replace():
+    """A Settings made from another with a new mesh level (dataclasses.replace, as the
+    studies and the sweeps do) takes that level's default theta, not the one its source
+    defaulted to; a theta given is kept, and the default survives pickling (a sweep's
+    processes). Before, the gallery's level-2 runs had level 1's penalty."""
+    level_1 = Settings()
+    level_2 = replace(level_1, mesh_level=2)
+    assert level_2.theta == pytest.approx(Settings(mesh_level=2).theta)
+    assert level_2.theta == pytest.approx(level_1.theta / 2)
+    assert replace(Settings(theta=3e-4), mesh_level=2).theta == 3e-4
+    assert replace(pickle.loads(pickle.dumps(level_1)), mesh_level=3).theta == pytest.approx(
+        level_1.theta / 3)
+    scene, settings = scene_and_settings(TIN)
+    sized = prepare(scene, replace(settings, mesh_level=2)).problem.settings
+    assert sized.theta == pytest.approx(sized.theta_per_length * sized.element_size / 2)
 
 
 def test_an_explicit_element_size_gives_uniform_elements():
