@@ -557,7 +557,7 @@ def test_auto_leaves_the_coarse_level_out_where_its_maps_would_not_pay():
     would pay by the measure it applies to a direct solve (auto_direct_unknowns): the
     paper's scene, the discrete example's shell patches (two levels as fast or faster:
     2.2 s against 3.1 s) and the gallery's 1 um 2D pads, whose coarse level takes the
-    face's elements for the pads' cells (8.0 s against 12.4 s), not the gallery's large
+    face's elements for the pads' cells (11.1 s against 18.7 s), not the gallery's large
     coated bodies (one level, with its split sides, took half the time: the coated roller
     3.3 s against 6.8 s)."""
     assert prepare(paper_scene(), Settings(mesh_level=2)).strategy.two_levels
