@@ -274,8 +274,8 @@ class FaceSpacing:
 
     def _graded(self, s0, s1, cap, ends):
         """Nodes at equal steps of the element count, the integral of 1/length(s)
-        (sampled 20 times per face element, and geometrically away from a patch's ends,
-        where a thin coating's cells are shorter)."""
+        (sampled 20 times per face element, and geometrically away from a patch's ends
+        and the contact's edges, where a thin coating's cells are shorter)."""
         samples = _bounded(int(min(20 * (s1 - s0) / self.fine, 2e6)) + 2, "samples of the face")
         s = np.linspace(s0, s1, samples)
         finest = min(self.fine, cap)
@@ -308,7 +308,8 @@ def face_spacing(scene, settings, face):
         return settings, FaceSpacing(fine, fine)
     a = float(f"{predicted_half_width(scene):.12g}")     # as Settings.sized_to does
     centre = _grading_centre(scene, face)
-    return settings, FaceSpacing(fine, far, centre, FINE_REACH * a, edges=(centre - a, centre + a))
+    return settings, FaceSpacing(fine, far, centre, FINE_REACH * a,
+                                 edges=(centre - a, centre + a))
 
 
 def simpson(nodes, stretch=1.0):

@@ -780,9 +780,6 @@ class DefaultTheta(float):
     by a Settings made from it with another mesh (dataclasses.replace), unlike a theta
     given, which is kept."""
 
-    def __reduce__(self):                # pickled (a sweep's processes) as itself
-        return DefaultTheta, (float(self),)
-
 
 @dataclass(frozen=True)
 class Settings:

@@ -22,7 +22,6 @@ from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
 from orchestrate.workers.session import Session
 from orchestrate.run.solve import solve
 from orchestrate.ddm.state import StateLayout
-from studies.gallery import measure as gallery_row
 
 pytestmark = pytest.mark.slow       # not in the everyday subset (make test-fast)
 
@@ -251,17 +250,3 @@ def test_auto_falls_back_to_the_direct_solve_where_two_levels_stall(tmp_path):
     for key in ("peak_contact_stress", "peak_interface_stress", "total_force"):
         assert auto[key] == pytest.approx(direct[key], rel=EPS_U), key
 
-
-def test_two_levels_on_narrow_coating_cells_give_the_monolithic_answer():
-    """The gallery's 1 um pads on mesh level 1: the fine level narrows the pads' cells at
-    their ends and the contact's edges, the coarse level takes the face's elements
-    (coarse.coarse_problem), so its maps cost 0.04 of the fine ones to probe and auto
-    takes two levels (run/plan.py, COARSE_WORK_SHARE). The answer is the monolithic
-    solve's of the fine problem (measured 1e-9 apart), in fewer iterations than on one
-    level (59 against 134, measured)."""
-    row = gallery_row(SCENES_DIR / "gallery" / "patches_and_bare_base.toml",
-                      progress=lambda text: None)
-    assert row["inner_solve"] == "two-level" and row["status"] == "converged"
-    assert row["iterations"] < 100
-    for key in ("peak_pressure", "total_force", "bond_normal", "bond_shear"):
-        assert row[f"{key}_difference"] < 1e-6, key
