@@ -160,22 +160,27 @@ def _coarse_left_out(problem, settings):
 
 
 def _cheap_coarse_level(solved, problem, settings):
-    """(settings, why) taking two levels below auto_two_level_mesh_level where the loop
-    would iterate and the coarse level's maps cost at most COARSE_WORK_SHARE of the fine
-    ones to probe (the module's text); else (settings, None)."""
-    if (settings.inner_solve != AUTO or settings.two_levels or settings.method == "paper"
+    """(settings, why, the coarse problem) taking two levels below
+    auto_two_level_mesh_level where the loop would iterate and the coarse level's maps
+    cost at most COARSE_WORK_SHARE of the fine ones to probe (the module's text); else
+    (settings, None, None)."""
+    unchanged = settings, None, None
+    if (settings.inner_solve != AUTO or settings.two_levels
             or settings.workers != "persistent" or maps_would_pay(problem, settings)):
-        return settings, None
+        return unchanged
     try:
         trial = replace(settings, auto_two_level_mesh_level=settings.mesh_level)
     except ParameterError:          # elements too short for the two levels' default gamma
-        return settings, None
-    share = probe_work(coarse_problem(solved, trial)) / probe_work(problem)
+        return unchanged
+    if not trial.two_levels:        # the paper's loop
+        return unchanged
+    coarse = coarse_problem(solved, trial)
+    share = probe_work(coarse) / probe_work(problem)
     if share > COARSE_WORK_SHARE:
-        return settings, None
+        return unchanged
     return trial, (f"auto: mesh_level {settings.mesh_level} below auto_two_level_mesh_level "
                    f"{settings.auto_two_level_mesh_level}, but the coarse level's maps cost "
-                   f"{share:.2g} of the fine ones to probe (at most {COARSE_WORK_SHARE:g})")
+                   f"{share:.2g} of the fine ones to probe (at most {COARSE_WORK_SHARE:g})"), coarse
 
 
 def _coarse_maps_left_out(coarse, settings):
@@ -210,15 +215,16 @@ def lengths_in_units(scene):
 def _prepared(scene, settings):
     solved, model_choice, scales, settings, a, predicted = _decided_models(scene, settings)
     problem = discretize(solved, settings)
-    settings, coarse_taken = _cheap_coarse_level(solved, problem, settings)
+    settings, coarse_taken, coarse = _cheap_coarse_level(solved, problem, settings)
     if coarse_taken:
         problem = discretize(solved, settings)       # its Robin parameter: two levels'
     # one level, its gamma, where the coarse level would not help (left_out), or has no
     # frictional solve (strategy._inner_solve)
     frictional = settings.inner_solve == AUTO and settings.two_levels and scene.frictional
-    left_out, coarse = _coarse_left_out(problem, settings), None
+    left_out = _coarse_left_out(problem, settings)
     if left_out is None and settings.two_levels and not frictional:
-        coarse = coarse_problem(solved, settings)
+        if coarse is None:
+            coarse = coarse_problem(solved, settings)
         left_out = _coarse_maps_left_out(coarse, settings)
     if left_out or frictional:
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)

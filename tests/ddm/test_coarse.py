@@ -249,4 +249,3 @@ def test_auto_falls_back_to_the_direct_solve_where_two_levels_stall(tmp_path):
     assert history["iteration"].tolist() == list(range(1, len(history) + 1))
     for key in ("peak_contact_stress", "peak_interface_stress", "total_force"):
         assert auto[key] == pytest.approx(direct[key], rel=EPS_U), key
-
