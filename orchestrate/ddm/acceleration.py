@@ -57,6 +57,39 @@ class Anderson:
             return np.full(max(len(self.parts), 1), math.inf)
         return np.max(self._ratios, axis=0)
 
+    def answer_errors(self):
+        """One bound per part (``parts``; in the scaled norm) of the newest image's
+        distance to the fixed point, or None before a secant. For an affine map with
+        Jacobian J the differences are exact secants, dR = (J - I) dX, so the share of
+        the residual r the history spans, r = dR c + rho with rho its least-squares
+        remainder, has its error exactly: dG c, G the images. The rest, J (J - I)^-1 rho,
+        is bounded by rho times the largest ||dG_part|| / ||dR|| over every combination of
+        the history's pairs, ||dG_part R^-1||_2 (R from the QR of dR), at least each
+        pair's own. Measured against the error itself over the gallery's final contact
+        sets, this stayed above it where the pairs' amplification times the whole
+        residual (amplification) dipped below it: a residual that dips while the
+        error does not hides in a combination of pairs (the gallery's pads at mesh level
+        2: a far pad's bond shear 2.7 times eps_u = 1e-3 off). It costs a dense solve
+        and a Gram matrix per part, so the loop asks for it only to confirm a stop."""
+        if self.secants < 1:
+            return None
+        order, q, upper = self._filtered(*self._qr, list(self._norms))
+        if not order:
+            return None
+        r = self._residuals[-1]
+        projection = q.T @ r
+        coefficients = np.linalg.solve(upper, projection)
+        remainder = math.sqrt(max(float(r @ r - projection @ projection), 0.0))
+        d_g = (np.diff(np.array(self._images), axis=0)[::-1].T * self.measure[:, None])[:, order]
+        explained = d_g @ coefficients
+        m = np.linalg.solve(upper.T, d_g.T).T               # dG R^-1
+        parts = self.parts or (slice(None),)
+        spectral = np.array([math.sqrt(max(float(np.linalg.eigvalsh(m[part].T @ m[part])[-1]),
+                                           0.0)) for part in parts])
+        amplification = np.maximum(spectral, self.amplification())
+        return np.array([np.linalg.norm(explained[part]) for part in parts]) \
+            + amplification * remainder
+
     def _pair_ratios(self):
         """||dx_part|| / ||dr|| of the newest pair of the history."""
         d_r = self._residuals[-1] - self._residuals[-2]

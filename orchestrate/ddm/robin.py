@@ -503,7 +503,7 @@ class _Loop:
         sizes[0] = max(sizes[0], 1e-300)
         return sizes
 
-    def part_errors(self, image, x, anderson, scale):
+    def part_errors(self, image, x, anderson, scale, confirm=False):
         """Each part's estimated relative error (_ActiveSetLoop's docstring):
         ||r|| max ||dx_part|| / ||dr|| / ||x_part||, and at least the part's own residual
         ||r_part|| / ||x_part||, in the scaled norm of the acceleration (displacements as
@@ -511,17 +511,20 @@ class _Loop:
         moved (the pressure of a contact with no point in contact: zero throughout) has
         no error, not the whole residual's: measured against component_floor of the
         largest traction, that had asked the other parts for a thousand times their
-        tolerance."""
+        tolerance. ``confirm``: at least Anderson.answer_errors, the bound a stop is
+        confirmed with."""
         sizes = self.part_sizes(self.layout.part_norms(image))
         sizes[1:] /= self.gamma                       # the acceleration's scaling
         residuals = (image - x) * scale
         own = np.array([np.linalg.norm(residuals[part]) for part in self.layout.parts])
-        return np.maximum(anderson.amplification() * np.linalg.norm(residuals), own) / sizes
+        errors = np.maximum(anderson.amplification() * np.linalg.norm(residuals), own)
+        bounds = anderson.answer_errors() if confirm else None
+        return (errors if bounds is None else np.maximum(errors, bounds)) / sizes
 
-    def error_estimate(self, image, x, anderson, scale):
+    def error_estimate(self, image, x, anderson, scale, confirm=False):
         """The largest relative error of a part of the state, with estimate_margin."""
-        return self.knobs.estimate_margin * float(np.max(self.part_errors(image, x, anderson,
-                                                                          scale)))
+        return self.knobs.estimate_margin * float(np.max(self.part_errors(
+            image, x, anderson, scale, confirm)))
 
     def converged(self, error):
         eps = self.knobs.eps_u
@@ -560,9 +563,12 @@ class _PaperLoop(_Loop):
             changes.append(max(change))
             amplified = (self.error_estimate(image, x, history, scale)
                          if history.secants >= knobs.min_secants else math.inf)
-            x = x_new
             self.estimate = max(changes[-1], amplified,
                                 _contraction_bound(changes, knobs.paper_contraction_window))
+            if self.estimate < knobs.eps_u:                     # confirm the stop
+                self.estimate = max(self.estimate, self.error_estimate(image, x, history,
+                                                                       scale, confirm=True))
+            x = x_new
             done, reason = self.converged(self.estimate)
             if done:
                 self.record(image, psi, previous_psi, change, 0, "converged")
@@ -670,8 +676,11 @@ class _ActiveSetLoop(_Loop):
     gamma ||u|| and component_floor times the largest component), with at least
     min_secants pairs seen in the final set. Psi is updated on the displacements' change,
     and after a cycle on the tractions' too (they can lag behind the displacements under
-    a stiff Robin parameter: an edge point flipped on their error at mesh level 3). The
-    estimate carries estimate_margin. (The names are the strategy's knobs, LoopKnobs.)"""
+    a stiff Robin parameter: an edge point flipped on their error at mesh level 3). A stop
+    is confirmed by the history's bound of each part's error (Anderson.answer_errors):
+    the pairs' amplification is a lower bound, which a dip of the residual had taken
+    below the error. The estimate carries estimate_margin. (The names are the strategy's
+    knobs, LoopKnobs.)"""
 
     start_state = None        # the first iterate (warm start), else zero
     robin_maps = None         # the subdomains' maps, when all have one (interface_system.py)
@@ -740,6 +749,9 @@ class _ActiveSetLoop(_Loop):
                     errors = self.part_errors(target, x, anderson, scale)
                     self.estimate = knobs.estimate_margin * float(np.max(errors))
                     displacement_error = float(errors[0])
+                    if psi_settled and self.estimate < eps:     # confirm the stop
+                        errors = self.part_errors(target, x, anderson, scale, confirm=True)
+                        self.estimate = knobs.estimate_margin * float(np.max(errors))
             done, reason = self.converged(self.estimate)
             if system is not None and psi_settled and not done:
                 system = None     # too ill-conditioned to solve directly: iterate on

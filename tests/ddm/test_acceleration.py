@@ -119,3 +119,24 @@ def test_qr_updates_are_factorisations():
     assert np.allclose(q @ r, np.delete(a, 2, axis=1), atol=1e-12)
     assert np.allclose(q.T @ q, np.eye(5), atol=1e-12) and np.allclose(np.tril(r, -1), 0.0)
     assert prepend_column(q, r, a[:, 1] + a[:, 3]) is None       # in the span: anew
+
+
+def test_the_answer_errors_are_exact_once_the_history_spans_the_map():
+    """Anderson.answer_errors: the error of the newest image, part by part, is dG c for the
+    share of its residual the secants span, exactly for an affine map, plus a bound of the
+    rest. With n independent secants in dimension n nothing is left over: the bound is the
+    error itself, each part apart (here: 3 slow entries beside 9 others, an image still far
+    from the fixed point)."""
+    n = 12
+    G, fixed_point = _affine_map(np.linspace(0.9, 0.999, n), seed=1)
+    parts = (np.arange(3), np.arange(3, n))
+    anderson = Anderson(np.ones(n), memory=n, parts=parts)
+    rng = np.random.default_rng(2)
+    assert anderson.answer_errors() is None                   # no secant yet
+    for _ in range(n + 1):                                      # independent secants
+        x = rng.standard_normal(n)
+        anderson.record(x, G(x))
+    image_error = G(x) - fixed_point
+    exact = [np.linalg.norm(image_error[part]) for part in parts]
+    assert min(exact) > 1.0                                     # far from the answer
+    np.testing.assert_allclose(anderson.answer_errors(), exact, rtol=1e-6)

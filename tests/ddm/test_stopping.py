@@ -13,9 +13,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
+import orchestrate
 from orchestrate.errors import RunFailed
 from orchestrate.model.scene import Settings
-from orchestrate.model.scene_file import paper_scene
+from orchestrate.model.scene_file import SCENES_DIR, load_scene, paper_scene
 from orchestrate.run.solve import solve
 
 pytestmark = pytest.mark.slow       # not in the everyday subset (make test-fast)
@@ -63,3 +64,32 @@ def test_the_papers_loop_is_not_called_converged_far_from_its_answer(tmp_path):
         return
     reference = solve(scene, Settings(), tmp_path / "reference")
     assert abs(run["contact_force"] / reference["contact_force"] - 1) < 1e-3
+
+
+def _relative_l2(table, reference, interface, column):
+    """Relative L2 distance along s of one interface's column (trapezoidal weights)."""
+    ours = table[table["interface"] == interface]
+    theirs = reference[reference["interface"] == interface]
+    s = theirs["s"].to_numpy()
+    assert np.allclose(ours["s"].to_numpy(), s)
+    difference = ours[column].to_numpy() - theirs[column].to_numpy()
+    return float(np.sqrt(np.trapezoid(difference ** 2, s) / np.trapezoid(theirs[column].to_numpy() ** 2, s)))
+
+
+def test_a_dip_of_the_residual_does_not_stop_the_loop_early():
+    """The gallery's pads at mesh level 2, eps_u = 1e-3: the far pad, which the cylinder does
+    not touch, has a bond shear of a third of a percent of the largest traction and converges
+    last. Anderson's residual dips while that error does not; the pairs' amplification times
+    such a residual called the run converged with that shear 2.7 times eps_u off (measured).
+    A stop is now confirmed by the history's bound (Anderson.answer_errors): within eps_u
+    (0.21 of it, measured). Against the default eps_u = 1e-6, a thousand times tighter."""
+    scene, settings = load_scene(SCENES_DIR / "gallery" / "patches_and_bare_base.toml")
+    settings = {**settings, "mesh_level": 2}
+    run = orchestrate.solve(scene, {**settings, "eps_u": 1e-3})
+    reference = orchestrate.solve(scene, settings)
+    assert run.summary["converged"] and run.summary["error_estimate"] < 1e-3
+    far_pad = "bond-coating3"
+    tractions = reference.interface[reference.interface["interface"] == far_pad]
+    largest = reference.interface[["sigma_n", "sigma_t"]].abs().max().max()
+    assert tractions["sigma_t"].abs().max() < 0.01 * largest       # a small part of the whole
+    assert _relative_l2(run.interface, reference.interface, far_pad, "sigma_t") < 1e-3
