@@ -14,6 +14,8 @@
 #   make iterations iterations per contact set against the mesh level (results/iterations.md)
 #   make contrast   iterations per contact set across the indenter's modulus
 #                   (results/indenter_contrast.md)
+#   make stopping   converged runs against their tolerance, eps_u 1e-3 to 1e-6 on the
+#                   gallery (results/stopping.md)
 #   make line-contact  the field below a line contact, frictionless and sliding, against
 #                   McEwen's closed form (results/line_contact_field.md)
 #   make friction   iterations with friction against without (results/friction_iterations.md),
@@ -31,7 +33,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy bond-shear gallery iterations contrast indentation line-contact friction sliding
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy bond-shear gallery iterations contrast stopping indentation line-contact friction sliding
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -169,6 +171,11 @@ iterations: setup
 # and rigid, split and unsplit, mesh levels 1-2 (results/indenter_contrast.md)
 contrast: setup
 	$(PYTHON) -m studies.indenter_contrast
+
+# Every gallery scene at eps_u 1e-3, 1e-4, 1e-6 against a run to 1e-9, mesh levels 1-2:
+# the largest error of a traction component against eps_u (results/stopping.md)
+stopping: setup
+	$(PYTHON) -m studies.stopping
 
 # The model error of each coating model over h2/a x E2/E (the paper's scene, a sphere on
 # a coated cylinder) and the automatic choice on held-out scenes (about an hour and a
