@@ -17,6 +17,7 @@ from typing import Callable
 
 from orchestrate.model import apply_overrides, load_scene, paper_scene
 from orchestrate.paths import SCENES_DIR
+from studies.paths import gallery_files
 
 
 def _from_file(name, **overrides):
@@ -128,7 +129,7 @@ def gallery_scenes():
     rigid indenters, hard and polymer coatings, large bodies, rollers, patches with bare
     base between them), as their files give them; those a reference can be made for."""
     return [(f"gallery {path.stem}", load_scene(path)[0])
-            for path in sorted((SCENES_DIR / "gallery").glob("*.toml"))
+            for path in gallery_files()
             if path.stem not in GALLERY_WITHOUT_REFERENCE]
 
 

@@ -30,20 +30,9 @@ import orchestrate
 from orchestrate.ddm import contact_half_width
 from orchestrate.model import contact_half_width as a_priori_half_width
 from orchestrate.model import scene_and_settings
-from orchestrate.paths import SCENES_DIR
 from orchestrate.run import RunFailed, monolithic_of, prepare
-from studies.paths import RESULTS_DIR
+from studies.paths import RESULTS_DIR, gallery_files
 from studies.report import Column, Report, command_line, listing, percent_g, seconds, significant
-
-GALLERY_DIR = SCENES_DIR / "gallery"
-
-
-def gallery_files(names=None):
-    files = sorted(GALLERY_DIR.glob("*.toml"))
-    if names:
-        files = [f for f in files if f.stem in names]
-    return files
-
 
 def _describe(scene, solved):
     """What the scene spans, from its dimensionless form ``solved`` (b and E)."""

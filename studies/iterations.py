@@ -28,12 +28,10 @@ import pandas as pd
 import orchestrate
 from orchestrate.errors import ParameterError
 from orchestrate.model import scene_and_settings
-from orchestrate.paths import SCENES_DIR
 from orchestrate.run import RunFailed
-from studies.paths import RESULTS_DIR
+from studies.paths import RESULTS_DIR, gallery_files
 from studies.report import Column, Report, command_line, seconds, significant
 
-GALLERY_DIR = SCENES_DIR / "gallery"
 # Each variant's settings: on one level the default split, each way of the bonds, and
 # exchanged unsplit; two levels, the coatings inside (their sides held, unsplit)
 ONE_LEVEL = "inside"
@@ -77,9 +75,7 @@ def measure(path, level, variant):
 
 def study(out, names=None, levels=(1, 2, 3), progress=print):
     rows = []
-    for path in sorted(GALLERY_DIR.glob("*.toml")):
-        if names and path.stem not in names:
-            continue
+    for path in gallery_files(names):
         for level in levels:
             for variant in VARIANTS:
                 row = measure(path, level, variant)

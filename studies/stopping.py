@@ -25,12 +25,10 @@ import pandas as pd
 
 import orchestrate
 from orchestrate.model import Settings, scene_and_settings
-from orchestrate.paths import SCENES_DIR
 from orchestrate.run import RunFailed
-from studies.paths import RESULTS_DIR
+from studies.paths import RESULTS_DIR, gallery_files
 from studies.report import Column, Report, command_line, significant
 
-GALLERY_DIR = SCENES_DIR / "gallery"
 TOLERANCES = (1e-3, 1e-4, 1e-6)
 REFERENCE_EPS_U = 1e-9
 COMPONENT_FLOOR = Settings.component_floor
@@ -92,9 +90,7 @@ def measure(path, level, progress=print):
 
 def study(out, levels=(1, 2), names=None, progress=print):
     rows = []
-    for path in sorted(GALLERY_DIR.glob("*.toml")):
-        if names and path.stem not in names:
-            continue
+    for path in gallery_files(names):
         for level in levels:
             rows += measure(path, level, progress)
     table = pd.DataFrame(rows)

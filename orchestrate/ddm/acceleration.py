@@ -80,15 +80,14 @@ class Anderson:
         projection = q.T @ r
         coefficients = np.linalg.solve(upper, projection)
         remainder = math.sqrt(max(float(r @ r - projection @ projection), 0.0))
-        d_g = (np.diff(np.array(self._images), axis=0)[::-1].T * self.measure[:, None])[:, order]
+        d_g = self._image_differences()[:, order] * self.measure[:, None]
         explained = d_g @ coefficients
         m = np.linalg.solve(upper.T, d_g.T).T               # dG R^-1
         parts = self.parts or (slice(None),)
         spectral = np.array([math.sqrt(max(float(np.linalg.eigvalsh(m[part].T @ m[part])[-1]),
                                            0.0)) for part in parts])
-        amplification = np.maximum(spectral, self.amplification())
-        return np.array([np.linalg.norm(explained[part]) for part in parts]) \
-            + amplification * remainder
+        explained_parts = np.array([np.linalg.norm(explained[part]) for part in parts])
+        return explained_parts + np.maximum(spectral, self.amplification()) * remainder
 
     def _pair_ratios(self):
         """||dx_part|| / ||dr|| of the newest pair of the history."""
@@ -137,6 +136,10 @@ class Anderson:
     def _residual_differences(self):
         """The differences of the residuals, newest column first."""
         return np.diff(np.array(self._residuals), axis=0)[::-1].T
+
+    def _image_differences(self):
+        """The differences of the images, newest column first."""
+        return np.diff(np.array(self._images), axis=0)[::-1].T
 
     def step(self, x, g):
         """Next iterate from the current iterate x and its image g = G(x)."""

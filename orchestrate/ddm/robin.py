@@ -503,7 +503,7 @@ class _Loop:
         sizes[0] = max(sizes[0], 1e-300)
         return sizes
 
-    def part_errors(self, image, x, anderson, scale, confirm=False):
+    def part_errors(self, image, x, anderson, scale):
         """Each part's estimated relative error (_ActiveSetLoop's docstring):
         ||r|| max ||dx_part|| / ||dr|| / ||x_part||, and at least the part's own residual
         ||r_part|| / ||x_part||, in the scaled norm of the acceleration (displacements as
@@ -511,20 +511,35 @@ class _Loop:
         moved (the pressure of a contact with no point in contact: zero throughout) has
         no error, not the whole residual's: measured against component_floor of the
         largest traction, that had asked the other parts for a thousand times their
-        tolerance. ``confirm``: at least Anderson.answer_errors, the bound a stop is
-        confirmed with."""
-        sizes = self.part_sizes(self.layout.part_norms(image))
-        sizes[1:] /= self.gamma                       # the acceleration's scaling
+        tolerance."""
         residuals = (image - x) * scale
         own = np.array([np.linalg.norm(residuals[part]) for part in self.layout.parts])
-        errors = np.maximum(anderson.amplification() * np.linalg.norm(residuals), own)
-        bounds = anderson.answer_errors() if confirm else None
-        return (errors if bounds is None else np.maximum(errors, bounds)) / sizes
+        return (np.maximum(anderson.amplification() * np.linalg.norm(residuals), own)
+                / self._scaled_sizes(image))
 
-    def error_estimate(self, image, x, anderson, scale, confirm=False):
+    def _scaled_sizes(self, image):
+        """part_sizes in the acceleration's scaling (tractions over gamma)."""
+        sizes = self.part_sizes(self.layout.part_norms(image))
+        sizes[1:] /= self.gamma
+        return sizes
+
+    def error_estimate(self, image, x, anderson, scale):
         """The largest relative error of a part of the state, with estimate_margin."""
-        return self.knobs.estimate_margin * float(np.max(self.part_errors(
-            image, x, anderson, scale, confirm)))
+        return self.knobs.estimate_margin * float(np.max(self.part_errors(image, x, anderson,
+                                                                          scale)))
+
+    def confirmed(self, estimate, image, anderson):
+        """``estimate``, and where it would stop the run, at least the history's bound of
+        each part's error (Anderson.answer_errors) with estimate_margin: the pairs'
+        amplification is a lower bound, which a dip of the residual had taken below the
+        error. Made only here: it costs a dense solve per part."""
+        if estimate >= self.knobs.eps_u:
+            return estimate
+        bounds = anderson.answer_errors()
+        if bounds is None:
+            return estimate
+        return max(estimate, self.knobs.estimate_margin
+                   * float(np.max(bounds / self._scaled_sizes(image))))
 
     def converged(self, error):
         eps = self.knobs.eps_u
@@ -563,12 +578,11 @@ class _PaperLoop(_Loop):
             changes.append(max(change))
             amplified = (self.error_estimate(image, x, history, scale)
                          if history.secants >= knobs.min_secants else math.inf)
-            self.estimate = max(changes[-1], amplified,
-                                _contraction_bound(changes, knobs.paper_contraction_window))
-            if self.estimate < knobs.eps_u:                     # confirm the stop
-                self.estimate = max(self.estimate, self.error_estimate(image, x, history,
-                                                                       scale, confirm=True))
             x = x_new
+            self.estimate = self.confirmed(
+                max(changes[-1], amplified,
+                    _contraction_bound(changes, knobs.paper_contraction_window)),
+                image, history)
             done, reason = self.converged(self.estimate)
             if done:
                 self.record(image, psi, previous_psi, change, 0, "converged")
@@ -749,9 +763,8 @@ class _ActiveSetLoop(_Loop):
                     errors = self.part_errors(target, x, anderson, scale)
                     self.estimate = knobs.estimate_margin * float(np.max(errors))
                     displacement_error = float(errors[0])
-                    if psi_settled and self.estimate < eps:     # confirm the stop
-                        errors = self.part_errors(target, x, anderson, scale, confirm=True)
-                        self.estimate = knobs.estimate_margin * float(np.max(errors))
+                    if psi_settled:
+                        self.estimate = self.confirmed(self.estimate, target, anderson)
             done, reason = self.converged(self.estimate)
             if system is not None and psi_settled and not done:
                 system = None     # too ill-conditioned to solve directly: iterate on

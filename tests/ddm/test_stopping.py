@@ -73,7 +73,8 @@ def _relative_l2(table, reference, interface, column):
     s = theirs["s"].to_numpy()
     assert np.allclose(ours["s"].to_numpy(), s)
     difference = ours[column].to_numpy() - theirs[column].to_numpy()
-    return float(np.sqrt(np.trapezoid(difference ** 2, s) / np.trapezoid(theirs[column].to_numpy() ** 2, s)))
+    return float(np.sqrt(np.trapezoid(difference ** 2, s)
+                         / np.trapezoid(theirs[column].to_numpy() ** 2, s)))
 
 
 def test_a_dip_of_the_residual_does_not_stop_the_loop_early():

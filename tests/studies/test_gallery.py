@@ -12,7 +12,8 @@ import pytest
 
 from orchestrate.model import scene_and_settings
 from orchestrate.run import prepare
-from studies.gallery import _describe, gallery_files
+from studies.gallery import _describe
+from studies.paths import gallery_files
 
 FILES = gallery_files()
 
