@@ -16,6 +16,8 @@
 #                   (results/indenter_contrast.md)
 #   make stopping   converged runs against their tolerance, eps_u 1e-3 to 1e-6 on the
 #                   gallery (results/stopping.md)
+#   make two-level-robin  the fine loop's Robin parameter under two levels against the
+#                   mesh level (results/two_level_robin.md)
 #   make line-contact  the field below a line contact, frictionless and sliding, against
 #                   McEwen's closed form (results/line_contact_field.md)
 #   make friction   iterations with friction against without (results/friction_iterations.md),
@@ -33,7 +35,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy bond-shear gallery iterations contrast stopping indentation line-contact friction sliding
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy bond-shear gallery iterations contrast stopping two-level-robin indentation line-contact friction sliding
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -176,6 +178,12 @@ contrast: setup
 # the largest error of a traction component against eps_u (results/stopping.md)
 stopping: setup
 	$(PYTHON) -m studies.stopping
+
+# Two levels' fine Robin parameter fixed against growing with the band the coarse level
+# leaves (the pads, the paper's scene, the discrete example; mesh levels 1-3;
+# results/two_level_robin.md)
+two-level-robin: setup
+	$(PYTHON) -m studies.two_level_robin
 
 # The model error of each coating model over h2/a x E2/E (the paper's scene, a sphere on
 # a coated cylinder) and the automatic choice on held-out scenes (about an hour and a
