@@ -37,9 +37,8 @@ import sys
 
 import pandas as pd
 
-from orchestrate.ddm.coarse import coarse_element_size
-from orchestrate.model import load_scene, paper_scene, scene_and_settings
-from orchestrate.model.scene import Settings
+from orchestrate.ddm import coarse_element_size
+from orchestrate.model import Settings, load_scene, paper_scene, scene_and_settings
 from orchestrate.paths import SCENES_DIR
 from orchestrate.sweeps import load_sweep, named_points
 from orchestrate.workers import Session

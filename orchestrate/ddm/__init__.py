@@ -5,6 +5,7 @@ directly (interface_system.py), the coarse-mesh correction (coarse.py), and the
 strategy a run is solved by, decided once and handed to the loop (strategy.py). It
 calls the subdomains' solves through a function it is given: it starts no process."""
 
+from orchestrate.ddm.coarse import coarse_element_size
 from orchestrate.ddm.contact import contact_half_width
 
-__all__ = ["contact_half_width"]
+__all__ = ["coarse_element_size", "contact_half_width"]

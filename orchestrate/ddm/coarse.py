@@ -14,13 +14,14 @@ coarse), it serves twice:
   r + P ((I - B_c)^-1 - I) R r, and Anderson acceleration drives x to the fixed point
   of x + (that), the fine loop's own. B_c is the coarse model of the fine loop's whole
   iteration: its groups of subdomains (Problem.sweep) one after the other, each group's
-  rows of the state taken from A_c, the others kept. Where the fine loop solves a base
-  and its coatings as one worker (Strategy.bonds_inside), all its workers at once, B_c
-  is that iteration: the contacts' data from the state before, the bonds' from the
-  state after (their exchange converged: the worker's penalty), B_c =
-  (I - S_b L_b)^-1 S_c L_c with A_c = S_c L_c + S_b L_b split by the data of contacts
-  and bonds, so that (I - B_c)^-1 = (I - A_c)^-1 (I - S_b L_b): the coarse workers stay
-  one per subdomain, their maps combined here.
+  data from the state the groups before it left. Where the fine loop solves a base and
+  its coatings as one worker (Strategy.bonds_inside), all its workers at once, B_c is
+  that iteration: the contacts' data from the state before, the bonds' from the state
+  after (their exchange converged: the worker's penalty); the coarse workers stay one
+  per subdomain, their maps combined here. Either way, with A_c = S L split into the
+  data computed from the state before and after, S L_a + S L_b, B_c =
+  (I - S L_b)^-1 S L_a and (I - B_c)^-1 = (I - A_c)^-1 (I - S L_b), applied through an
+  LU of the data's size (iteration_inverse).
 
 The coarse level's workers start before the fine ones and probe while the fine run meshes
 and starts (orchestrate/run/coarse_level.py); they stop once their maps are read.
@@ -35,7 +36,7 @@ import math
 
 import numpy as np
 from scipy.linalg import lu_factor, lu_solve
-from scipy.sparse import csr_matrix
+from scipy.sparse import coo_matrix, csr_matrix
 
 from orchestrate.ddm.robin import first_contact_set, robin_laws, updated_contact_set
 from orchestrate.ddm.robin_parameters import side_parameters
@@ -100,16 +101,23 @@ class CoarseCorrection:
         self.newton_steps = newton_steps
         self.prolong = _interpolation(coarse_layout, layout)     # P: coarse -> fine
         self.restrict = _interpolation(layout, coarse_layout)    # R: fine -> coarse
-        self._groups = [_rows_of(coarse, coarse_layout, group) for group in coarse.sweep]
-        # every worker at once (one group, or the bonds inside): B_c's inverse through
-        # I - L S; else the sweep's product, formed
-        self._at_once = bool(inside) or len(self._groups) == 1
-        self._bond_data = None          # the data entries of the bonds inside, if any
+        # the fine iteration's order: each data entry's step (a later step's data come
+        # from the state the earlier steps left) and each state entry's; a base and its
+        # coatings as one worker (inside) solve in one step, their bonds' data from the
+        # state after it (their exchange converged in the worker's matrix), else the
+        # sweep's groups one after the other
         if inside:
-            self._bond_data = np.zeros(system.size, dtype=bool)
+            self._state_step = np.zeros(coarse_layout.size, dtype=int)
+            self._data_step = np.zeros(system.size, dtype=int)
             for i in inside:
                 for side in (0, 1):
-                    self._bond_data[coarse_layout.slices["u", i, side]] = True
+                    self._data_step[coarse_layout.slices["u", i, side]] = 1
+        else:
+            self._state_step = np.full(coarse_layout.size, -1)
+            for step, group in enumerate(coarse.sweep):
+                self._state_step[_rows_of(coarse, coarse_layout, group)] = step
+            assert np.all(self._state_step >= 0), "a state entry no group solves"
+            self._data_step = self._state_step[:system.size]   # data g ~ the traces u
         self._psi = None
 
     def laws(self, psi):
@@ -133,16 +141,7 @@ class CoarseCorrection:
         if self._psi is None or not np.array_equal(psi, self._psi):
             self._set_contact(psi)
         coarse = self.restrict @ residual
-        # by LU factors, a solve per residual (forming (I - B_c)^-1 B_c took as many as
-        # its columns: TiN at mesh level 2, 2.1 s of the loop's 8.9 s)
-        if not self._at_once:
-            return self.prolong @ (lu_solve(self._factors, coarse) - coarse)
-        step = (coarse if self._bond_data is None
-                else coarse - self._bond_states @ (self._bond_laws @ coarse))
-        # (I - S L)^-1 = I + S (I - L S)^-1 L: a factorisation of the data's size, half
-        # the state's
-        inverse = step + self._states @ lu_solve(self._factors, self._laws @ step)
-        return self.prolong @ (inverse - coarse)
+        return self.prolong @ (self._inverse(coarse) - coarse)
 
     def _set_contact(self, psi):
         coarse_psi = np.empty(self.coarse_layout.gap.size)
@@ -154,18 +153,32 @@ class CoarseCorrection:
             coarse_psi[coarse] = psi[fine][nearest]
         L, _, alpha = self.system.laws_matrix(self.laws(coarse_psi))
         S, _ = self.system.state_matrix(alpha)
-        L = csr_matrix(L)           # a few entries per row
+        self._inverse = iteration_inverse(S, L, self._data_step, self._state_step)
         self._psi = psi.copy()
-        if not self._at_once:
-            one_iteration = _sweep_matrix(np.asarray(S @ L), self._groups)
-            self._factors = lu_factor(np.eye(len(one_iteration)) - one_iteration)
-            return
-        # one group (all workers at once): B_c = A_c = S L, or with bonds inside B_c's
-        # inverse through A_c's (the module's note)
-        self._states, self._laws = S, L
-        if self._bond_data is not None:
-            self._bond_states, self._bond_laws = S[:, self._bond_data], L[self._bond_data]
-        self._factors = lu_factor(np.eye(L.shape[0]) - np.asarray(L @ S))
+
+
+def iteration_inverse(S, L, data_step, state_step):
+    """r -> (I - B)^-1 r, B the linear part of one iteration of steps: the state x = S g +
+    s0 of the data g = L x + h, each step solving its workers (S maps a step's data to its
+    own state entries only) from data its laws compute from the state the earlier steps
+    left (``data_step``, ``state_step``: each data and state entry's step).
+
+    Split L = L_a + L_b by whether an entry's data come from the state before the
+    iteration (L_a) or after an earlier step of it (L_b): x' = S L_b x' + S L_a x + c, so
+    B = (I - S L_b)^-1 S L_a and (I - B)^-1 = (I - S L)^-1 (I - S L_b), with
+    (I - S L)^-1 = I + S (I - L S)^-1 L: an LU of the data's size (half the state's), a
+    solve per residual. (Forming B and factorising I - B took eight times the LU's work:
+    TiN at mesh level 2, 0.2 s a contact set.)"""
+    L = coo_matrix(L)               # a few entries per row
+    after = data_step[L.row] > state_step[L.col]
+    laws = L.tocsr()
+    laws_after = csr_matrix((L.data[after], (L.row[after], L.col[after])), shape=L.shape)
+    factors = lu_factor(np.eye(L.shape[0]) - np.asarray(laws @ S))
+
+    def inverse(r):
+        step = r - S @ (laws_after @ r)
+        return step + S @ lu_solve(factors, laws @ step)
+    return inverse
 
 
 def _rows_of(problem, layout, names):
@@ -175,21 +188,6 @@ def _rows_of(problem, layout, names):
         for i, side in problem.sides_of(name):
             rows[layout.slices["u", i, side]] = rows[layout.slices["t", i, side]] = True
     return rows
-
-
-def _sweep_matrix(A, groups):
-    """The linear part of one iteration that solves the groups one after the other, each
-    from the state the ones before left, where solving all at once is x -> A x + c: the
-    product of the groups' steps, each A's rows of its group and the identity's others:
-    a step replaces its group's rows of the product so far by A's rows times it (the
-    rows no group has replaced yet are the identity's, so their product is A's columns)."""
-    sweep = np.eye(len(A))
-    replaced = np.zeros(len(A), dtype=bool)
-    for rows in groups:
-        sweep[rows] = (A[rows][:, replaced] @ sweep[replaced]
-                       + np.where(replaced[None, :], 0.0, A[rows]))
-        replaced |= rows
-    return sweep
 
 
 def _interpolation(source, target):

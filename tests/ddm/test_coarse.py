@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from orchestrate.ddm.coarse import _interpolation, _sweep_matrix, coarse_element_size
+from orchestrate.ddm.coarse import _interpolation, coarse_element_size
 from orchestrate.run.coarse_level import CoarseLevel
 from orchestrate.mesh.discretization import discretize
 from orchestrate.errors import ParameterError
@@ -49,23 +49,6 @@ def test_the_transfers_are_exact_for_linear_states_and_coarse_states_come_back()
     assert np.allclose(prolong @ _linear_state(coarse), _linear_state(fine), atol=1e-12)
     assert np.allclose(restrict @ _linear_state(fine), _linear_state(coarse), atol=1e-12)
     assert np.allclose((restrict @ prolong).toarray(), np.eye(coarse.size), atol=1e-12)
-
-
-@pytest.mark.parametrize("cuts", [(), (7,), (5, 19)])
-def test_the_sweep_matrix_is_the_product_of_its_groups_steps(cuts):
-    """Each group's step takes A's rows of the group and keeps the others: a sweep over
-    the groups is the product of those steps, the first group's applied first."""
-    A = np.random.default_rng(3).normal(size=(24, 24))
-    order = np.random.default_rng(4).permutation(24)
-    groups = []
-    for members in np.split(order, cuts):
-        rows = np.zeros(24, dtype=bool)
-        rows[members] = True
-        groups.append(rows)
-    product = np.eye(24)
-    for rows in groups:
-        product = np.where(rows[:, None], A, np.eye(24)) @ product
-    assert np.allclose(_sweep_matrix(A, groups), product, rtol=0, atol=1e-12)
 
 
 def _freefem_children():

@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from orchestrate.ddm.coarse import coarse_element_size
-from orchestrate.model.scene import Settings
+from orchestrate.ddm import coarse_element_size
+from orchestrate.model import Settings
 from studies.two_level_robin import two_level_settings
 
 
