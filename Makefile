@@ -18,6 +18,8 @@
 #                   gallery (results/stopping.md)
 #   make two-level-robin  the fine loop's Robin parameter under two levels against the
 #                   mesh level (results/two_level_robin.md)
+#   make shell-edge each coating model's contact pressure against the penalty under a
+#                   stiff indenter (results/shell_edge_penalty.md)
 #   make line-contact  the field below a line contact, frictionless and sliding, against
 #                   McEwen's closed form (results/line_contact_field.md)
 #   make friction   iterations with friction against without (results/friction_iterations.md),
@@ -35,7 +37,7 @@ PYTHON  := .venv/bin/python
 APT_PACKAGES := freefem++ libfreefem++ libglu1-mesa libxcursor1 libxft2 libxinerama1
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy bond-shear gallery iterations contrast stopping two-level-robin indentation line-contact friction sliding
+.PHONY: setup run test test-fast clean figures fig3 fig4 fig5 bench stability discrete adequacy bond-shear gallery iterations contrast stopping two-level-robin shell-edge indentation line-contact friction sliding
 # A recipe that fails leaves no target behind that would look up to date (a sweep's
 # runs.csv after an interrupted or failed run, say).
 .DELETE_ON_ERROR:
@@ -184,6 +186,12 @@ stopping: setup
 # results/two_level_robin.md)
 two-level-robin: setup
 	$(PYTHON) -m studies.two_level_robin
+
+# Each coating model's contact pressure (peak, its alternation from node to node) on the
+# gallery's rigid and near-rigid cylinders at the default penalty and multiples of it
+# (results/shell_edge_penalty.md)
+shell-edge: setup
+	$(PYTHON) -m studies.shell_edge_penalty
 
 # The model error of each coating model over h2/a x E2/E (the paper's scene, a sphere on
 # a coated cylinder) and the automatic choice on held-out scenes (about an hour and a
