@@ -81,9 +81,10 @@ def both_ways(out):
     return pd.DataFrame(rows)
 
 
-def figure_scenes(level, inner_solve="auto"):
-    """A row per figure scene, solved one after the other in one Session at ``level``."""
-    points = [(name, {**values, "mesh_level": level, "inner_solve": inner_solve})
+def figure_scenes(level, inner_solve="auto", **settings):
+    """A row per figure scene, solved one after the other in one Session at ``level``
+    (and any other ``settings``)."""
+    points = [(name, {**values, "mesh_level": level, "inner_solve": inner_solve, **settings})
               for name, values in named_points(load_sweep(SWEEP)[1])]
     with Session() as session:
         return one_by_one(points, session).assign(mesh_level=level, inner_solve=inner_solve)

@@ -40,9 +40,7 @@ import pandas as pd
 from orchestrate.ddm import coarse_element_size
 from orchestrate.model import Settings, load_scene, paper_scene, scene_and_settings
 from orchestrate.paths import SCENES_DIR
-from orchestrate.sweeps import load_sweep, named_points
-from orchestrate.workers import Session
-from studies.bench_session import SWEEP, one_by_one
+from studies.bench_direct import figure_scenes
 from studies.iterations import counted_run
 from studies.paths import RESULTS_DIR, gallery_files
 from studies.report import Column, Report, command_line, seconds, significant
@@ -79,22 +77,17 @@ def two_level_settings(settings, level, rule, bonds):
     return at
 
 
-def figure_scenes(level, rule):
-    """The figure scenes at ``level`` with two levels under ``rule``, one after the other
-    in one Session: a row each (studies.bench_session.one_by_one)."""
-    at = two_level_settings(Settings(), level, rule, "auto")
-    points = [(name, {**values, "mesh_level": level, "inner_solve": "two-level",
-                      "robin_two_level_per_length": at.robin_two_level_per_length})
-              for name, values in named_points(load_sweep(SWEEP)[1])]
-    with Session() as session:
-        return one_by_one(points, session).assign(mesh_level=level, rule=rule)
-
-
 def figure_study(out, levels=(2, 3), progress=print):
+    """The figure scenes at each of ``levels`` with two levels under each rule, one after
+    the other in one Session per level and rule (studies.bench_direct.figure_scenes)."""
     tables = []
     for level in levels:
         for rule in RULES:
-            tables.append(figure_scenes(level, rule))
+            per_length = two_level_settings(Settings(), level, rule,
+                                            "auto").robin_two_level_per_length
+            tables.append(figure_scenes(level, "two-level",
+                                        robin_two_level_per_length=per_length)
+                          .assign(rule=rule))
             progress(f"figure scenes level {level} {rule}")
     table = pd.concat(tables, ignore_index=True)
     os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
