@@ -20,7 +20,6 @@ import argparse
 from dataclasses import replace
 import math
 import os
-import sys
 import time
 
 import numpy as np
@@ -32,7 +31,8 @@ from orchestrate.model import contact_half_width as a_priori_half_width
 from orchestrate.model import scene_and_settings
 from orchestrate.run import RunFailed, monolithic_of, prepare
 from studies.paths import RESULTS_DIR, gallery_files
-from studies.report import Column, Report, command_line, listing, percent_g, seconds, significant
+from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
+                            report_beside, listing, percent_g, seconds, significant)
 
 def _describe(scene, solved):
     """What the scene spans, from its dimensionless form ``solved`` (b and E)."""
@@ -223,12 +223,11 @@ def main(argv=None):
                         help="every scene at this mesh level (default: each file's own)")
     parser.add_argument("names", nargs="*", help="scenes of the gallery (default: all)")
     args = parser.parse_args(argv)
-    table = study(args.out, args.names, progress=lambda text: print(text, file=sys.stderr),
+    table = study(args.out, args.names, progress=progress_to_stderr,
                   mesh_level=args.mesh_level)
-    with pd.option_context("display.width", 250, "display.max_columns", 40):
-        print(table.to_string(index=False))
+    print_table(table)
     print(args.out)
-    print(write_report(table, os.path.splitext(args.out)[0] + ".md",
+    print(write_report(table, report_beside(args.out),
                        command_line("studies.gallery", argv)))
 
 

@@ -20,7 +20,6 @@ Writes results/indenter_contrast.csv and results/indenter_contrast.md.
 import argparse
 from dataclasses import replace
 import os
-import sys
 
 import pandas as pd
 
@@ -28,7 +27,8 @@ from orchestrate.model import scene_and_settings
 from orchestrate.paths import SCENES_DIR
 from studies.iterations import counted_run
 from studies.paths import RESULTS_DIR
-from studies.report import Column, Report, command_line, seconds, significant
+from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
+                            report_beside, seconds, significant)
 
 SCENE = SCENES_DIR / "gallery" / "near_rigid_cylinder.toml"
 # the indenter's modulus over the base's; None: rigid
@@ -127,10 +127,9 @@ def main(argv=None):
                         help="the table; the report goes beside it (indenter_contrast.md)")
     parser.add_argument("--levels", type=int, nargs="+", default=[1, 2])
     args = parser.parse_args(argv)
-    table = study(args.out, args.levels, progress=lambda text: print(text, file=sys.stderr))
-    with pd.option_context("display.width", 250, "display.max_columns", 40):
-        print(table.to_string(index=False))
-    print(write_report(table, os.path.splitext(args.out)[0] + ".md",
+    table = study(args.out, args.levels, progress=progress_to_stderr)
+    print_table(table)
+    print(write_report(table, report_beside(args.out),
                        command_line("studies.indenter_contrast", argv)))
 
 

@@ -20,7 +20,6 @@ Writes results/iterations.csv and results/iterations.md.
 import argparse
 from dataclasses import replace
 import os
-import sys
 import time
 
 import pandas as pd
@@ -30,7 +29,8 @@ from orchestrate.errors import ParameterError
 from orchestrate.model import scene_and_settings
 from orchestrate.run import RunFailed
 from studies.paths import RESULTS_DIR, gallery_files
-from studies.report import Column, Report, command_line, seconds, significant
+from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
+                            report_beside, seconds, significant)
 
 # Each variant's settings: on one level the default split, each way of the bonds, and
 # exchanged unsplit; two levels, the coatings inside (their sides held, unsplit)
@@ -149,10 +149,9 @@ def main(argv=None):
     parser.add_argument("names", nargs="*", help="scenes of the gallery (default: all)")
     args = parser.parse_args(argv)
     table = study(args.out, args.names, args.levels,
-                  progress=lambda text: print(text, file=sys.stderr))
-    with pd.option_context("display.width", 250, "display.max_columns", 40):
-        print(table.to_string(index=False))
-    print(write_report(table, os.path.splitext(args.out)[0] + ".md",
+                  progress=progress_to_stderr)
+    print_table(table)
+    print(write_report(table, report_beside(args.out),
                        command_line("studies.iterations", argv)))
 
 

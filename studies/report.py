@@ -14,12 +14,14 @@ types none of their numbers.
 
 from dataclasses import dataclass
 import math
+import os
 from pathlib import Path
 import shlex
 import sys
 from typing import Callable, Union
 
 import numpy as np
+import pandas as pd
 
 from orchestrate.files import written
 
@@ -89,6 +91,22 @@ def fraction_of_E(value):
     if value == round(value):
         return f"{value:g}E"
     return f"{value:g} E"
+
+
+def progress_to_stderr(text):
+    """A study's progress line: on stderr, for stdout carries its table."""
+    print(text, file=sys.stderr)
+
+
+def print_table(table):
+    """A study's table on stdout, each row on one wide line."""
+    with pd.option_context("display.width", 250, "display.max_columns", 40):
+        print(table.to_string(index=False))
+
+
+def report_beside(table_path):
+    """The path of the report written beside a study's CSV (x.csv -> x.md)."""
+    return os.path.splitext(table_path)[0] + ".md"
 
 
 def command_line(module, argv=None):

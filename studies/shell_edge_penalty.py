@@ -20,7 +20,6 @@ Writes results/shell_edge_penalty.csv and results/shell_edge_penalty.md.
 import argparse
 from dataclasses import replace
 import os
-import sys
 
 import numpy as np
 import pandas as pd
@@ -28,7 +27,8 @@ import pandas as pd
 import orchestrate
 from orchestrate.model import scene_and_settings
 from studies.paths import RESULTS_DIR, gallery_files
-from studies.report import Column, Report, command_line, significant
+from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
+                            report_beside, significant)
 
 SCENES = ("rigid_cylinder", "near_rigid_cylinder")
 MODELS = ("shell", "stretch_shell", "elastic")
@@ -105,13 +105,9 @@ def main(argv=None):
     parser.add_argument("--factors", type=float, nargs="+", default=list(FACTORS))
     args = parser.parse_args(argv)
 
-    def progress(text):
-        print(text, file=sys.stderr)
-
-    table = study(args.out, args.factors, progress=progress)
-    with pd.option_context("display.width", 250, "display.max_columns", 40):
-        print(table.to_string(index=False))
-    print(write_report(table, os.path.splitext(args.out)[0] + ".md",
+    table = study(args.out, args.factors, progress=progress_to_stderr)
+    print_table(table)
+    print(write_report(table, report_beside(args.out),
                        command_line("studies.shell_edge_penalty", argv)))
 
 

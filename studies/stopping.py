@@ -18,7 +18,6 @@ Writes results/stopping.csv and results/stopping.md.
 import argparse
 from dataclasses import replace
 import os
-import sys
 
 import numpy as np
 import pandas as pd
@@ -27,7 +26,8 @@ import orchestrate
 from orchestrate.model import Settings, scene_and_settings
 from orchestrate.run import RunFailed
 from studies.paths import RESULTS_DIR, gallery_files
-from studies.report import Column, Report, command_line, significant
+from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
+                            report_beside, significant)
 
 TOLERANCES = (1e-3, 1e-4, 1e-6)
 REFERENCE_EPS_U = 1e-9
@@ -146,10 +146,9 @@ def main(argv=None):
     parser.add_argument("names", nargs="*", help="scenes of the gallery (default: all)")
     args = parser.parse_args(argv)
     table = study(args.out, args.levels, args.names,
-                  progress=lambda text: print(text, file=sys.stderr))
-    with pd.option_context("display.width", 250, "display.max_columns", 40):
-        print(table.to_string(index=False))
-    print(write_report(table, os.path.splitext(args.out)[0] + ".md",
+                  progress=progress_to_stderr)
+    print_table(table)
+    print(write_report(table, report_beside(args.out),
                        command_line("studies.stopping", argv)))
 
 

@@ -33,7 +33,6 @@ import argparse
 from dataclasses import replace
 import math
 import os
-import sys
 
 import pandas as pd
 
@@ -43,7 +42,8 @@ from orchestrate.paths import SCENES_DIR
 from studies.bench_direct import figure_scenes
 from studies.iterations import counted_run
 from studies.paths import RESULTS_DIR, gallery_files
-from studies.report import Column, Report, command_line, seconds, significant
+from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
+                            seconds, significant)
 
 RULES = ("element", "band")
 BONDS = ("exchanged", "inside")
@@ -196,15 +196,11 @@ def main(argv=None):
     parser.add_argument("--figure-levels", type=int, nargs="*", default=[2, 3],
                         help="the figure scenes' mesh levels (none: leave them out)")
     args = parser.parse_args(argv)
-    def progress(text):
-        print(text, file=sys.stderr)
-
-    table = study(args.out, args.levels, progress=progress)
+    table = study(args.out, args.levels, progress=progress_to_stderr)
     stem = os.path.splitext(args.out)[0]
-    figures = (figure_study(f"{stem}_figures.csv", args.figure_levels, progress=progress)
-               if args.figure_levels else None)
-    with pd.option_context("display.width", 250, "display.max_columns", 40):
-        print(table.to_string(index=False))
+    figures = (figure_study(f"{stem}_figures.csv", args.figure_levels,
+                            progress=progress_to_stderr) if args.figure_levels else None)
+    print_table(table)
     print(write_report(table, figures, stem + ".md",
                        command_line("studies.two_level_robin", argv)))
 
