@@ -31,8 +31,9 @@ from orchestrate.model import contact_half_width as a_priori_half_width
 from orchestrate.model import scene_and_settings
 from orchestrate.run import RunFailed, monolithic_of, prepare
 from studies.paths import RESULTS_DIR, gallery_files
-from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
-                            report_beside, listing, percent_g, seconds, significant)
+from studies.report import (Column, Report, command_line, listing, percent_g, print_table,
+                            progress_to_stderr, report_beside, save_table, seconds,
+                            significant)
 
 def _describe(scene, solved):
     """What the scene spans, from its dimensionless form ``solved`` (b and E)."""
@@ -138,8 +139,7 @@ def measure(path, progress=print, mesh_level=None):
 def study(out, names=None, progress=print, mesh_level=None):
     rows = [measure(path, progress, mesh_level) for path in gallery_files(names)]
     table = pd.DataFrame(rows)
-    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
-    table.to_csv(out, index=False)
+    save_table(table, out)
     return table
 
 

@@ -28,7 +28,7 @@ from orchestrate.paths import SCENES_DIR
 from studies.iterations import counted_run
 from studies.paths import RESULTS_DIR
 from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
-                            report_beside, seconds, significant)
+                            report_beside, save_table, seconds, significant)
 
 SCENE = SCENES_DIR / "gallery" / "near_rigid_cylinder.toml"
 # the indenter's modulus over the base's; None: rigid
@@ -75,8 +75,7 @@ def study(out, levels=(1, 2), progress=print):
                          f"{row['status']}")
                 rows.append(row)
     table = pd.DataFrame(rows)
-    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
-    table.to_csv(out, index=False)
+    save_table(table, out)
     return table
 
 

@@ -30,7 +30,7 @@ from orchestrate.model import scene_and_settings
 from orchestrate.run import RunFailed
 from studies.paths import RESULTS_DIR, gallery_files
 from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
-                            report_beside, seconds, significant)
+                            report_beside, save_table, seconds, significant)
 
 # Each variant's settings: on one level the default split, each way of the bonds, and
 # exchanged unsplit; two levels, the coatings inside (their sides held, unsplit)
@@ -82,8 +82,7 @@ def study(out, names=None, levels=(1, 2, 3), progress=print):
                 progress(f"{path.stem} level {level} {variant}: {row['status']}")
                 rows.append(row)
     table = pd.DataFrame(rows)
-    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
-    table.to_csv(out, index=False)
+    save_table(table, out)
     return table
 
 

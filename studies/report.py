@@ -104,6 +104,12 @@ def print_table(table):
         print(table.to_string(index=False))
 
 
+def save_table(table, path):
+    """A study's table as CSV at ``path`` (its folder made), whole or not at all."""
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    written(path, lambda partial: table.to_csv(partial, index=False))
+
+
 def report_beside(table_path):
     """The path of the report written beside a study's CSV (x.csv -> x.md)."""
     return os.path.splitext(table_path)[0] + ".md"

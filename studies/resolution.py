@@ -26,7 +26,7 @@ import pandas as pd
 from orchestrate.model import Settings, contact_half_width, load_scene, paper_scene
 from orchestrate.paths import SCENES_DIR
 from studies.paths import RESULTS_DIR
-from studies.report import Column, Report, command_line, listing, percent
+from studies.report import Column, Report, command_line, listing, percent, save_table
 
 ACROSS = (2, 3, 4, 6, 8, 10, 12, 16, 24, 32, 48)
 REFERENCE_ACROSS = 96
@@ -87,8 +87,7 @@ def study(out, progress=print):
                 row[f"{key}_error"] = abs(values[key] / reference[key] - 1.0)
             rows.append(row)
     table = pd.DataFrame(rows)
-    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
-    table.to_csv(out, index=False)
+    save_table(table, out)
     return table
 
 

@@ -28,7 +28,7 @@ import orchestrate
 from orchestrate.model import scene_and_settings
 from studies.paths import RESULTS_DIR, gallery_files
 from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
-                            report_beside, significant)
+                            report_beside, save_table, significant)
 
 SCENES = ("rigid_cylinder", "near_rigid_cylinder")
 MODELS = ("shell", "stretch_shell", "elastic")
@@ -69,8 +69,7 @@ def study(out, factors=FACTORS, progress=print):
                 rows.append(measure(name, model, factor))
                 progress(f"{name} {model} theta x{factor:g}: {rows[-1]['status']}")
     table = pd.DataFrame(rows)
-    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
-    table.to_csv(out, index=False)
+    save_table(table, out)
     return table
 
 

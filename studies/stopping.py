@@ -27,7 +27,7 @@ from orchestrate.model import Settings, scene_and_settings
 from orchestrate.run import RunFailed
 from studies.paths import RESULTS_DIR, gallery_files
 from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
-                            report_beside, significant)
+                            report_beside, save_table, significant)
 
 TOLERANCES = (1e-3, 1e-4, 1e-6)
 REFERENCE_EPS_U = 1e-9
@@ -94,8 +94,7 @@ def study(out, levels=(1, 2), names=None, progress=print):
         for level in levels:
             rows += measure(path, level, progress)
     table = pd.DataFrame(rows)
-    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
-    table.to_csv(out, index=False)
+    save_table(table, out)
     return table
 
 

@@ -43,7 +43,7 @@ from studies.bench_direct import figure_scenes
 from studies.iterations import counted_run
 from studies.paths import RESULTS_DIR, gallery_files
 from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
-                            seconds, significant)
+                            save_table, seconds, significant)
 
 RULES = ("element", "band")
 BONDS = ("exchanged", "inside")
@@ -90,8 +90,7 @@ def figure_study(out, levels=(2, 3), progress=print):
                           .assign(rule=rule))
             progress(f"figure scenes level {level} {rule}")
     table = pd.concat(tables, ignore_index=True)
-    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
-    table.to_csv(out, index=False)
+    save_table(table, out)
     return table
 
 
@@ -114,8 +113,7 @@ def study(out, levels=(1, 2, 3), progress=print):
     first = table[(table.mesh_level == min(levels)) & (table.rule == "element")]
     if min(levels) == 1:
         table = pd.concat([table, first.assign(rule="band")], ignore_index=True)
-    os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
-    table.to_csv(out, index=False)
+    save_table(table, out)
     return table
 
 
