@@ -38,7 +38,8 @@ import numpy as np
 from scipy.linalg import lu_factor, lu_solve
 from scipy.sparse import coo_matrix, csr_matrix
 
-from orchestrate.ddm.robin import first_contact_set, robin_laws, updated_contact_set
+from orchestrate.ddm.robin import (first_contact_set, predicted_contact, robin_laws,
+                                  updated_contact_set)
 from orchestrate.ddm.robin_parameters import side_parameters
 from orchestrate.mesh.discretization import discretize
 
@@ -118,15 +119,21 @@ class CoarseCorrection:
                 self._state_step[_rows_of(coarse, coarse_layout, group)] = step
             assert np.all(self._state_step >= 0), "a state entry no group solves"
             self._data_step = self._state_step[:system.size]   # data g ~ the traces u
-        self._psi = None
+        self._nearest = self._nearest_fine_points()
+        self._psi = None        # the coarse contact set of the factors in _inverse
 
     def laws(self, psi):
         return coarse_laws(self.coarse, self.coarse_layout, psi)
 
-    def first_state(self):
-        """The fine state interpolated from the coarse contact problem's solution."""
+    def first_state(self, half_width=None):
+        """The fine state interpolated from the coarse contact problem's solution, its
+        semi-smooth Newton steps from the points within the a priori ``half_width`` (b;
+        Strategy.first_contact), if known (TiN at mesh level 2: one step, against ten
+        grown from the first point touched)."""
         layout = self.coarse_layout
-        psi, x = first_contact_set(self.coarse.scene, layout, layout.zeros(), True), None
+        psi = first_contact_set(self.coarse.scene, layout, layout.zeros(), True,
+                                predicted_contact(self.coarse, layout, half_width))
+        x = None
         for _ in range(self.newton_steps):
             x, _ = self.system.fixed_point(self.laws(psi))
             new_psi = updated_contact_set(layout, psi, x)
@@ -138,23 +145,29 @@ class CoarseCorrection:
     def correction(self, psi, residual):
         """P ((I - B_c)^-1 - I) R residual, with the coarse laws of the fine contact set
         psi (each coarse point takes the state of the fine point nearest along s)."""
-        if self._psi is None or not np.array_equal(psi, self._psi):
-            self._set_contact(psi)
+        coarse_psi = psi[self._nearest]
+        if self._psi is None or not np.array_equal(coarse_psi, self._psi):
+            self._set_contact(coarse_psi)    # factorised anew only where the coarse set moves
         coarse = self.restrict @ residual
         return self.prolong @ (self._inverse(coarse) - coarse)
 
-    def _set_contact(self, psi):
-        coarse_psi = np.empty(self.coarse_layout.gap.size)
+    def _nearest_fine_points(self):
+        """Each coarse contact point's fine contact point nearest along s (its entry in
+        the fine contact set)."""
+        nearest = np.empty(self.coarse_layout.gap.size, dtype=int)
         for (i, fine), (_, coarse) in zip(self.layout.contact_slices(),
                                           self.coarse_layout.contact_slices()):
             fine_s = self.layout.interfaces[i].s
             coarse_s = self.coarse_layout.interfaces[i].s
-            nearest = np.abs(coarse_s[:, None] - fine_s[None, :]).argmin(axis=1)
-            coarse_psi[coarse] = psi[fine][nearest]
+            nearest[coarse] = fine.start + np.abs(coarse_s[:, None]
+                                                  - fine_s[None, :]).argmin(axis=1)
+        return nearest
+
+    def _set_contact(self, coarse_psi):
         L, _, alpha = self.system.laws_matrix(self.laws(coarse_psi))
         S, _ = self.system.state_matrix(alpha)
         self._inverse = iteration_inverse(S, L, self._data_step, self._state_step)
-        self._psi = psi.copy()
+        self._psi = coarse_psi
 
 
 def iteration_inverse(S, L, data_step, state_step):

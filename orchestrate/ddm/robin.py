@@ -713,7 +713,7 @@ class _ActiveSetLoop(_Loop):
         if self.start_state is not None:
             x = self.start_state.copy()
         elif self.coarse is not None:
-            x = self.coarse.first_state()
+            x = self.coarse.first_state(self.strategy.first_contact)
         else:
             x = held_indenter_state(self.problem, layout)
         system = self.interface_system(x)
