@@ -71,6 +71,7 @@ class Worker:
         self.log_path = os.path.join(workdir, f"{stem}.log")
         self.process = None
         self._request_fd = self._reply_fd = None
+        self._replies_owed = 0      # requests sent whose replies are not read
         command = freefem.command(script, [*arguments, "-request", self.request_path,
                                            "-reply", self.reply_path])
         try:
@@ -102,6 +103,7 @@ class Worker:
         """Write one request: the command's number, then its record (exchange.py)."""
         text = f"{int(command)}\n" + (record.encode() if record is not None else "")
         self._write(text.encode())
+        self._replies_owed += 1
 
     def receive(self, decode, *sizes):
         """Read one reply and return its record, ``decode(numbers, *sizes)`` (a record's
@@ -112,6 +114,7 @@ class Worker:
             numbers.end()
         except RecordError as error:
             raise WorkerError(f"worker {self.name} sent {error}") from None
+        self._replies_owed -= 1
         return record
 
     # -- lifetime -----------------------------------------------------------------------
@@ -125,8 +128,12 @@ class Worker:
 
     def ask_to_stop(self, grace=5.0):
         """Send the worker its stop, not waiting for it to exit (workers stopped together
-        exit side by side: ``wait_stopped`` each after asking all)."""
-        if self.process is not None and self.process.poll() is None:
+        exit side by side: ``wait_stopped`` each after asking all). One that owes a reply
+        (its run failed elsewhere meanwhile) reads no request until that reply, which no
+        one will read, is written: it is killed at once, not waited for."""
+        if self._replies_owed:
+            self.kill()
+        elif self.process is not None and self.process.poll() is None:
             try:
                 self._write(f"{int(Command.STOP)}\n".encode(), timeout=grace)
             except (WorkerError, OSError):
@@ -181,6 +188,7 @@ class Worker:
                 written = os.write(self._request_fd, view[:65536])
                 view = view[written:]
             elif time.monotonic() > deadline:
+                self.kill()         # unresponsive: no grace to wait out when the run stops
                 raise WorkerError(f"worker {self.name} stopped reading its requests")
 
     def _read_reply(self):
@@ -197,9 +205,10 @@ class Worker:
             else:
                 self._check_alive()
                 if time.monotonic() - start > self.timeout:
-                    raise WorkerError(f"worker {self.name} gave no answer for "
-                                      f"{self.timeout:g} s (Settings.worker_timeout; a "
-                                      "stopped or overloaded process?):\n"
-                                      + freefem.log_tail(self.log_path))
+                    message = (f"worker {self.name} gave no answer for {self.timeout:g} s "
+                               "(Settings.worker_timeout; a stopped or overloaded "
+                               "process?):\n" + freefem.log_tail(self.log_path))
+                    self.kill()     # unresponsive: no grace to wait out when the run stops
+                    raise WorkerError(message)
         reply = b"".join(chunks).rstrip()
         return reply[:-len(b"end")]
