@@ -126,6 +126,14 @@ def measure(path, progress=print, mesh_level=None):
     row["monolithic_solves"] = traces["solves"]
     row["time_ratio"] = row["time_s"] / row["monolithic_time_s"]
     progress(f"{path.stem}: monolithic in {row['monolithic_time_s']:.1f} s")
+    # the yardstick starts its contact set from the first point touched; started
+    # from the loop's own a priori set it is the stronger one
+    started = time.perf_counter()
+    primed, _ = monolithic_of(plan.problem, half_width=plan.strategy.first_contact)
+    row["primed_time_s"] = time.perf_counter() - started
+    row["primed_solves"] = primed["solves"]
+    row["primed_ratio"] = row["time_s"] / row["primed_time_s"]
+    progress(f"{path.stem}: monolithic from the a priori set in {row['primed_time_s']:.1f} s")
     reference = _monolithic_answers(plan.problem, stresses)
     row["peak_pressure"] = reference["peak_pressure"] * plan.scales.stress
     row["units"] = f"{scene.units.stress}, {scene.units.length}"
@@ -158,7 +166,10 @@ def write_report(table, out, command="python -m studies.gallery"):
                 f"(mesh level {', '.join(str(int(level)) for level in levels)}) "
                 "by the Robin loop, and by the monolithic solve of the same discrete "
                 "problem (same mesh, interface points and coating models), each from a "
-                "cold start on this machine; one run each.")
+                "cold start on this machine; one run each. The monolithic solve's contact "
+                "set starts from the first point touched (its Newton solves grow it), and "
+                "again from the loop's own a priori set (the points within the estimated "
+                "contact half-width).")
     report.section("What each scene spans")
     report.table(table, [
         Column("scene", "scene"),
@@ -177,8 +188,14 @@ def write_report(table, out, command="python -m studies.gallery"):
         Column("contact_sets", "sets", "{:.0f}", "contact sets the loop went through"),
         Column("inner_solve", "inner solve"),
         Column("time_s", "loop", seconds, "the run's wall time, workers started for it"),
-        Column("monolithic_time_s", "monolithic", seconds, "the monolithic solve's"),
-        Column("time_ratio", "ratio", significant, "loop over monolithic")]
+        Column("monolithic_time_s", "monolithic", seconds, "the monolithic solve's, "
+               "from the first point touched"),
+        Column("monolithic_solves", "solves", "{:.0f}", "its Newton solves"),
+        Column("time_ratio", "ratio", significant, "loop over monolithic"),
+        Column("primed_time_s", "from a priori set", seconds, "the monolithic solve's, "
+               "from the a priori set"),
+        Column("primed_solves", "solves", "{:.0f}", ""),
+        Column("primed_ratio", "ratio", significant, "loop over it")]
         + [Column(key, name, percent_g, "" if i else
                   "the loop's answer against the monolithic one, relative")
            for i, (key, name) in enumerate(DIFFERENCES.items())])
@@ -190,7 +207,11 @@ def write_report(table, out, command="python -m studies.gallery"):
                        f"monolithic solve's. The loop takes {significant(converged.time_s.median())} s "
                        f"at the median (at most {significant(converged.time_s.max())} s), "
                        f"{significant(converged.time_ratio.median())} times the monolithic "
-                       "solve's time at the median.")
+                       "solve's time at the median (at most "
+                       f"{significant(converged.time_ratio.max())}), and "
+                       f"{significant(converged.primed_ratio.median())} times its time from "
+                       "the a priori set (at most "
+                       f"{significant(converged.primed_ratio.max())}).")
     report.section("Where the time goes")
     report.table(converged, [
         Column("scene", "scene"),

@@ -58,8 +58,9 @@ def rigid_and_stiff():
     for modulus in STIFF:
         stiff = apply_overrides(scene, {"indenter.rigid": False, "indenter.E": modulus})
         for name, case, theta in (("rigid", scene, 1.0 / modulus), ("stiff", stiff, 1.0)):
-            problem = prepare(case, Settings(element_size=0.0625, theta=theta)).problem
-            solved[name, modulus] = (problem, *monolithic_of(problem))
+            plan = prepare(case, Settings(element_size=0.0625, theta=theta))
+            solved[name, modulus] = (plan.problem, *monolithic_of(
+                plan.problem, half_width=plan.strategy.first_contact))
     return solved
 
 
