@@ -65,21 +65,43 @@ FRICTION_SHARE = 1e-3
 # history (anderson_depth 5), at 4 it converged. Under friction it slowed partial slip
 # (63 -> 116 iterations) and the fretting example (69 -> 150).
 BOND_RATIO_LIMIT = 256.0
-# A contact's two sides (rule "neighbour", iterated on one level, frictionless): a single
-# coefficient matches the neighbour's response E* k / 2 at one wavenumber only; two
-# different ones, their product kept, match the two ends of the contact's band (from its
-# width to the element's) and contract the exchange faster there (Gander's two-sided
-# optimised Robin conditions). The stiffer side's coefficient is divided by the split
-# (Settings.contact_split) and the softer side's multiplied, widening the neighbour rule's own
-# asymmetry (narrowing it, a soft roller on steel took 23 iterations against 14). Faces
-# within CONTACT_TIE of each other count as equal and the indenter, a plain body, takes
-# the smaller coefficient (thin hard coatings: 28-33 iterations; the other way round,
-# 34-39). Measured on the gallery at mesh level 1: a split of 4 cut every iterated
-# scene's final set or left it within one, 8 and 16 no better (results/iterations.md
-# has the counts with and without). Under friction the contact's normal exchange steers
-# the slip, and splitting it slowed partial slip (63 -> 154 iterations); under a coarse
-# level, whose sides are held, it slowed the loop (TiN at mesh level 2: 28 -> 47).
+# A contact's two sides (rule "neighbour", iterated on one level, frictionless): the
+# stiffer side's coefficient is divided by the split (Settings.contact_split) and the
+# softer side's multiplied (capped at 1/theta), widening the neighbour rule's own
+# asymmetry. Split far (256; Settings.contact_split's default is 4, the value the
+# pinned tests were measured at), the exchange nears a Dirichlet-Neumann one: the soft side
+# takes the stiff side's displacements, the stiff side the soft side's tractions. Its
+# error at wavenumber k is then multiplied by minus the ratio of the two faces'
+# responses, and two elastic faces both respond as E* k / 2: the ratio is about the same
+# at every wavelength from the contact's width down to the element's, the map's
+# eigenvalues cluster, and the accelerated loop takes about as many iterations on every
+# mesh (the gallery's final contact sets at mesh levels 1/2/3, a base and its thin
+# coatings in one worker: TiN 13/13/14, DLC 16/18/14, against 33/34/38 at a split of 4).
+# A small split (4: two coefficients matching the band's two ends, Gander's two-sided
+# optimised Robin conditions) contracts the band too, but by a factor that nears 1 as
+# the band widens with the mesh. A thin coating's bond is no such pair (its response is
+# E2* h2 k^2 against the base's E3* k): where it is exchanged, not solved inside the
+# base's worker, its ratio spans the band. Faces within CONTACT_TIE of each other count
+# as equal and the indenter, a plain body, takes the smaller coefficient (thin hard
+# coatings, at a split of 4: 28-33 iterations; the other way round, 34-39). Under
+# friction the contact's normal exchange steers the slip, and splitting it slowed
+# partial slip (63 -> 154 iterations at 4); under a coarse level, whose sides are held,
+# it slowed the loop (TiN at mesh level 2: 28 -> 47 at 4).
 CONTACT_TIE = 1.5
+
+
+# Under a contrast across a contact (one body more than hold_contrast times as stiff as
+# the other, E*) the neighbour rule's coefficients are already that asymmetric, and a
+# wider split lengthened the contact set's walk (the gallery at mesh level 1: the rigid
+# cylinder 27 -> 55 iterations, the near-rigid one 22 -> 30, at a split of 256 against 4).
+CONTACT_SPLIT_UNDER_CONTRAST = 4.0
+
+
+def _contrast_across(stiffness, interface, hold_contrast):
+    """Whether one side's body is more than hold_contrast times as stiff (E*) as the
+    other's (a coating counted as its base, as in side_parameters)."""
+    a, b = (stiffness[side.subdomain] for side in interface.sides)
+    return max(a, b) > hold_contrast * min(a, b)
 
 
 @dataclass(frozen=True)
@@ -211,9 +233,11 @@ def side_parameters(problem, gamma, rule, hold_contrast, paper=False, hold_all=F
                 scale *= split if side == 0 else 1.0 / split
             if (interface.kind == "contact" and rule == NEIGHBOUR and split_sides
                     and not paper and not frictional):
-                scale *= (1.0 / contact_split if _smaller_contact_side(problem, own, neighbour,
-                                                                       side)
-                          else contact_split)
+                split = (min(contact_split, CONTACT_SPLIT_UNDER_CONTRAST)
+                         if _contrast_across(stiffness, interface, hold_contrast)
+                         else contact_split)
+                scale *= (1.0 / split if _smaller_contact_side(problem, own, neighbour, side)
+                          else split)
             side_gamma = min(gamma * scale, 1.0 / problem.penalty)
             if interface.kind == "friction":    # held: its alpha is too small to matter
                 own_scale = stiffness[own] / reference if not paper else 1.0

@@ -92,11 +92,10 @@ KNOB_RANGES = {
                       "of a body as soft as its neighbour crawl; large: no side holds, and "
                       "every worker factorises again for each contact set"),
     "contact_split": (1.0, 1e3, "factor", "1: one coefficient each side's neighbour "
-                      "offers; far above, each side nears a Neumann or a Dirichlet "
-                      "condition and the exchange stalls"),
+                      "offers; far above, the soft side's coefficient reaches 1/theta "
+                      "and the other side's nears zero"),
     "bond_split": (1.0, 1e3, "factor", "1: the split of the coating's response against "
-                   "the base's alone; far above, each side nears a Neumann or a Dirichlet "
-                   "condition and the exchange stalls"),
+                   "the base's alone; above 16 the same as 16"),
     "auto_direct_unknowns": (0, 10 ** 6, "interface unknowns", "0: auto probes no new "
                              "worker's map; beyond, the dense interface system of the "
                              "maps outgrows any machine"),
@@ -860,11 +859,13 @@ class Settings:
                                     # many times as stiff
     contact_split: float = 4.0      # iterated on one level without friction, a contact's
                                     # stiffer side takes its neighbour-rule gamma over
-                                    # this, the softer side its own times this
-                                    # (robin_parameters.py); 1: unsplit
+                                    # this, the softer side its own times this (at most
+                                    # 4 under a neighbour hold_contrast times as stiff;
+                                    # far, 256: nearly a Neumann and a Dirichlet side,
+                                    # robin_parameters.py); 1: unsplit
     bond_split: float = 4.0         # and a bond's sides, split by the coating's response
                                     # against the base's, further by this (frictionless,
-                                    # one level); 1: that split alone
+                                    # one level; at most 16 in all); 1: that split alone
     # auto's inner solve:
     auto_direct_unknowns: int = 250  # interface unknowns: auto solves each contact set
                                     # directly while every new worker has at most this

