@@ -63,13 +63,17 @@ FRICTION_SHARE = 1e-3
 # than at 1 (at 4: TiN 33 -> 27, thick ceramic 31 -> 29, anodised 30 -> 20),
 # the paper's scene iterated 67 -> 47; at 8 that scene diverged with a short Anderson
 # history (anderson_depth 5), at 4 it converged. Under friction it slowed partial slip
-# (63 -> 116 iterations) and the fretting example (69 -> 150).
+# (63 -> 116 iterations) and the fretting example (69 -> 150). By default (bond_split 16)
+# every such split reaches the limit: a thin coating's bond is solved inside the base's
+# worker wherever the loop iterates on one level (strategy._bonds_inside), and what is
+# left exchanged is a thick coating's, two elastic faces, which the far split suits as it
+# suits a contact (the note below: the thick ceramic 21/22/22 at mesh levels 1/2/3,
+# against 29/34/38 at 4).
 BOND_RATIO_LIMIT = 256.0
 # A contact's two sides (rule "neighbour", iterated on one level, frictionless): the
 # stiffer side's coefficient is divided by the split (Settings.contact_split) and the
 # softer side's multiplied (capped at 1/theta), widening the neighbour rule's own
-# asymmetry. Split far (256; Settings.contact_split's default is 4, the value the
-# pinned tests were measured at), the exchange nears a Dirichlet-Neumann one: the soft side
+# asymmetry. Split far (256, the default), the exchange nears a Dirichlet-Neumann one: the soft side
 # takes the stiff side's displacements, the stiff side the soft side's tractions. Its
 # error at wavenumber k is then multiplied by minus the ratio of the two faces'
 # responses, and two elastic faces both respond as E* k / 2: the ratio is about the same

@@ -23,7 +23,7 @@ from dataclasses import asdict, dataclass, fields, replace
 from typing import Optional
 
 from orchestrate.ddm.coarse import coarse_element_size, paired
-from orchestrate.ddm.robin_parameters import contrast_exceeds, side_parameters
+from orchestrate.ddm.robin_parameters import side_parameters
 from orchestrate.mesh.problem_size import (GIB, estimated_dofs, interface_system_memory,
                                             memory_limit)
 
@@ -192,17 +192,15 @@ def _solved_directly(sides, direct):
     return tuple(side.solved_directly() for side in sides) if direct else sides
 
 
-def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_out=None,
-                  coarse_taken=None):
+def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_out=None):
     """The Strategy of ``problem`` (a run's discrete problem, in b and E) under
     ``settings``; ``coarse``: the coarse level's problem where two levels are asked
     (Settings.two_levels), else None; ``half_width``: the a priori contact half-width
     (b), if known; ``coarse_left_out``: why auto left out the coarse level its mesh
-    level would take, ``coarse_taken``: why it took one its mesh level would not
-    (run/plan.py), or None."""
+    level would take (run/plan.py), or None."""
     paper = settings.method == PAPER
     theta, default_rule = settings.default_theta()
-    inner_solve = _inner_solve(settings, problem, coarse, coarse_left_out, coarse_taken)
+    inner_solve = _inner_solve(settings, problem, coarse, coarse_left_out)
     gamma, gamma_rule = settings.robin_choice()
     inside = _bonds_inside(settings, problem, inner_solve, half_width)
     if inside and inner_solve.pending:
@@ -253,13 +251,12 @@ def _bonds_inside(settings, problem, inner_solve, half_width):
     thinner than the a priori contact half-width (a thicker one is a body of its own under the
     contact, whose exchange with the base converges as fast: measured on the gallery,
     one worker was slower there), within the tolerance it reaches
-    (INSIDE_TIGHTEST_EPS_U); "auto" there too, but only where some side's neighbour is
-    more than hold_contrast times as stiff (results/iterations.md: under such a contrast
-    one worker took far fewer iterations and no more time; between bodies alike, fewer
-    iterations but more time, its requests and replies carrying both sides of every
-    bond, at a contact split of 4; at 256, with no bond to exchange, the final contact
-    set's iterations stay about level with the mesh: robin_parameters.py). Never with a
-    fresh process per solve: each factorises anew, its last
+    (INSIDE_TIGHTEST_EPS_U); "auto" there too: with no bond to exchange, the contact's
+    far split (robin_parameters.py) keeps the final contact set's iterations about level
+    with the mesh, where a thin coating's bond, exchanged, would not (at a contact split
+    of 4 and between bodies alike, one worker had taken fewer iterations but more time,
+    its requests and replies carrying both sides of every bond). Never with a fresh
+    process per solve: each factorises anew, its last
     digits differ from process to process, and with the penalty in one matrix that noise
     (measured: relative changes stuck near 4e-9 under a near-rigid indenter) kept the
     stopping test above eps_u."""
@@ -271,9 +268,6 @@ def _bonds_inside(settings, problem, inner_solve, half_width):
         return False
     if inner_solve.planned == TWO_LEVEL and settings.bonds != "inside":
         return False    # auto takes them inside under a contrast: no place for two levels
-    if settings.bonds == "auto" and not contrast_exceeds(problem, settings.robin_sides,
-                                                         settings.hold_contrast):
-        return False
     return (inner_solve.planned in (ITERATE, TWO_LEVEL)
             or not maps_would_pay(problem, settings))
 
@@ -325,7 +319,7 @@ def _workers(problem, inside):
     return others + ((COATED_BASE, coated),)
 
 
-def _inner_solve(settings, problem, coarse, coarse_left_out=None, coarse_taken=None):
+def _inner_solve(settings, problem, coarse, coarse_left_out=None):
     """The InnerSolve the settings ask of the active-set loop, where the scene allows it
     (two levels need interfaces that pair up with the coarse level's)."""
     asked = settings.inner_solve
@@ -350,7 +344,7 @@ def _inner_solve(settings, problem, coarse, coarse_left_out=None, coarse_taken=N
         else:
             fallback = DIRECT
     if settings.two_levels:
-        rule = ("asked" if asked == TWO_LEVEL else coarse_taken or
+        rule = ("asked" if asked == TWO_LEVEL else
                 f"auto: mesh_level {settings.mesh_level} >= auto_two_level_mesh_level "
                 f"{settings.auto_two_level_mesh_level}")
         if coarse is not None and paired(problem.interfaces, coarse.interfaces):

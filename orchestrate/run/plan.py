@@ -32,14 +32,12 @@ On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse lev
   shell patches) two levels were as fast or faster (the paper's scene at mesh level 3:
   3.2 s against 3.8 s; the discrete example at level 2: 2.2 against 3.1 s).
 
-Below auto_two_level_mesh_level, where the loop would iterate, auto takes two levels
-where the coarse level's maps cost at most COARSE_WORK_SHARE of the fine ones to probe
-(_cheap_coarse_level): less than they cost against a run on mesh level 2 (0.12-0.14),
-where two levels are taken. On mesh level 1 the coarse level (interface elements twice
-as long) costs 0.26-0.31 of the fine one on the gallery and the examples, where one
-level was the faster (results/iterations.md); the gallery's 1 um pads, whose fine level
-narrows the pads' cells at their ends and the contact's edges and whose coarse level
-does not, 0.04 (two levels 2.6 s and 59 iterations, one level 3.4 s and 134).
+Below auto_two_level_mesh_level auto takes no coarse level. It had taken one on mesh level
+1 where the coarse level's maps cost at most a tenth of the fine ones to probe: the
+gallery's 1 um pads (0.04), two levels 2.6 s and 59 iterations against one level's 3.4 s
+and 134. With the contact's sides split far and the pads inside the base's worker
+(ddm/robin_parameters.py), one level takes 64 iterations in the same time, 17 of them in
+the final contact set against the two levels' 33.
 """
 
 from contextlib import contextmanager
@@ -47,7 +45,7 @@ from dataclasses import dataclass, replace
 
 from orchestrate.ddm.coarse import coarse_problem
 from orchestrate.ddm.robin_parameters import contrast_exceeds, soft_coating
-from orchestrate.ddm.strategy import DIRECT, maps_would_pay, plan_strategy, probe_work
+from orchestrate.ddm.strategy import DIRECT, maps_would_pay, plan_strategy
 from orchestrate.errors import LengthsError, ParameterError
 from orchestrate.mesh.discretization import contact_reach, discretize
 from orchestrate.mesh.problem_size import check_direct_size, check_size, estimated_dofs
@@ -60,10 +58,6 @@ from orchestrate.run.validity import Say, mesh_warnings, scene_warnings
 AUTO = "auto"
 FIDELITY = ("shell", "stretch_shell", "elastic")   # least to most faithful
 COST_TIE = 1.1
-# The coarse level's probing work over the fine level's, at most, for two levels below
-# auto_two_level_mesh_level: less than on mesh level 2, where it is 0.12-0.14 on the
-# gallery and the examples (the module's text).
-COARSE_WORK_SHARE = 0.1
 
 
 def estimated_unknowns(scene, settings):
@@ -159,30 +153,6 @@ def _coarse_left_out(problem, settings):
     return None
 
 
-def _cheap_coarse_level(solved, problem, settings):
-    """(settings, why, the coarse problem) taking two levels below
-    auto_two_level_mesh_level where the loop would iterate and the coarse level's maps
-    cost at most COARSE_WORK_SHARE of the fine ones to probe (the module's text); else
-    (settings, None, None)."""
-    unchanged = settings, None, None
-    if (settings.inner_solve != AUTO or settings.two_levels
-            or settings.workers != "persistent" or maps_would_pay(problem, settings)):
-        return unchanged
-    try:
-        trial = replace(settings, auto_two_level_mesh_level=settings.mesh_level)
-    except ParameterError:          # elements too short for the two levels' default gamma
-        return unchanged
-    if not trial.two_levels:        # the paper's loop
-        return unchanged
-    coarse = coarse_problem(solved, trial)
-    share = probe_work(coarse) / probe_work(problem)
-    if share > COARSE_WORK_SHARE:
-        return unchanged
-    return trial, (f"auto: mesh_level {settings.mesh_level} below auto_two_level_mesh_level "
-                   f"{settings.auto_two_level_mesh_level}, but the coarse level's maps cost "
-                   f"{share:.2g} of the fine ones to probe (at most {COARSE_WORK_SHARE:g})"), coarse
-
-
 def _coarse_maps_left_out(coarse, settings):
     """Why auto leaves out the coarse level whose problem is ``coarse`` (its maps would
     not pay: the module's text), or None."""
@@ -214,10 +184,7 @@ def lengths_in_units(scene):
 
 def _prepared(scene, settings):
     solved, model_choice, scales, settings, a, predicted = _decided_models(scene, settings)
-    problem = discretize(solved, settings)
-    settings, coarse_taken, coarse = _cheap_coarse_level(solved, problem, settings)
-    if coarse_taken:
-        problem = discretize(solved, settings)       # its Robin parameter: two levels'
+    problem, coarse = discretize(solved, settings), None
     # one level, its gamma, where the coarse level would not help (left_out), or has no
     # frictional solve (strategy._inner_solve)
     frictional = settings.inner_solve == AUTO and settings.two_levels and scene.frictional
@@ -228,10 +195,10 @@ def _prepared(scene, settings):
         left_out = _coarse_maps_left_out(coarse, settings)
     if left_out or frictional:
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
-        problem, coarse_taken = discretize(solved, settings), None
+        problem = discretize(solved, settings)
     check_size(problem)
     coarse = coarse if settings.two_levels else None
-    strategy = plan_strategy(settings, problem, coarse, predicted, left_out, coarse_taken)
+    strategy = plan_strategy(settings, problem, coarse, predicted, left_out)
     if strategy.inner_solve.planned == DIRECT:     # asked: its dense system must fit
         check_direct_size(problem)
     chosen = scene.with_models([c.model for c in solved.coatings])

@@ -37,12 +37,12 @@ def test_a_slow_map_does_not_lead_the_loop_away_from_the_predicted_set():
 
 @pytest.fixture(scope="module")
 def pads():
-    """The gallery's pads on one level, the return rule's scene, and as auto solves them:
-    on two levels (run/plan.py, COARSE_WORK_SHARE), the coarse level taking the face's
-    elements for the pads' narrow cells (coarse.coarse_problem)."""
+    """The gallery's pads on one level, the return rule's scene, as auto solves them; and
+    on two levels, the coarse level taking the face's elements for the pads' narrow cells
+    (coarse.coarse_problem)."""
     scene, settings = load_scene(SCENES_DIR / "gallery" / "patches_and_bare_base.toml")
-    return (scene, orchestrate.solve(scene, {**settings, "inner_solve": "iterate"}).summary,
-            orchestrate.solve(scene, settings).summary)
+    return (scene, orchestrate.solve(scene, settings).summary,
+            orchestrate.solve(scene, {**settings, "inner_solve": "two-level"}).summary)
 
 
 def test_a_zone_that_barely_touches_does_not_walk_the_contact_set(pads):
@@ -50,10 +50,11 @@ def test_a_zone_that_barely_touches_does_not_walk_the_contact_set(pads):
     steel beside it and the next pad's edge, which it barely reaches. On inexact iterates
     that edge's points entered and left together, update after update: 28 set changes and
     221 iterations (measured). An update that would return a point to the state an earlier
-    one took it from waits for a tolerance ten times tighter: 9 and 141 (measured). On one
-    level, as auto iterated it before its coarse level paid."""
+    one took it from waits for a tolerance ten times tighter: 9 and 141 (measured; 5 and
+    64 with the contact's sides split far and the pads inside the base's worker). On one
+    level, as auto solves it."""
     scene, summary, _ = pads
-    assert summary["converged"]
+    assert summary["converged"] and summary["inner_solve_used"] == "iterate"
     assert summary["total_force"] == pytest.approx(scene.load.force, rel=1e-6)
     assert summary["active_set_changes"] < 20 and summary["iterations"] < 200
     forces = {name: interface["force"] for name, interface in summary["interfaces"].items()}
@@ -62,13 +63,12 @@ def test_a_zone_that_barely_touches_does_not_walk_the_contact_set(pads):
 
 
 def test_two_levels_on_narrow_coating_cells_give_the_one_level_answer(pads):
-    """auto's two levels on the pads (coarse maps at 0.04 of the fine ones' probing): the
-    one-level loop's answer, each run within eps_u = 1e-6 of the same fixed point (make
-    gallery checks it against the monolithic solve: 1e-9 apart), in fewer iterations (59
-    against 134, measured)."""
+    """Two levels on the pads, the coarse level's cells the face's elements where the
+    fine level narrows them at the pads' ends: the one-level loop's answer, each run
+    within eps_u = 1e-6 of the same fixed point (make gallery checks auto's against the
+    monolithic solve: 1e-9 apart)."""
     _, one_level, two_levels = pads
     assert two_levels["converged"] and two_levels["inner_solve_used"] == "two-level"
-    assert two_levels["iterations"] < 0.6 * one_level["iterations"]
     answers = [(run["peak_contact_stress"], run["descent"],
                 *[interface["force"] for interface in run["interfaces"].values()],
                 *[interface["peak_normal_stress"] for interface in run["interfaces"].values()])
