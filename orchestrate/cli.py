@@ -90,7 +90,7 @@ _SETTINGS_HELP = {
                      "its body is at least this many times as stiff as its neighbour",
     "contact_split": "iterated on one level without friction, a contact's stiffer side "
                      "takes its gamma over this, the softer side its own times this (at "
-                     "most 4 under a contrast of the bodies)",
+                     "most 4 under an indenter hold_contrast times as stiff as the base)",
     "bond_split": "iterated on one level without friction, a bond's sides split about "
                   "the coating's response against the base's further by this factor",
     "auto_direct_unknowns": "auto solves directly while every new worker has at most this "

@@ -860,9 +860,9 @@ class Settings:
     contact_split: float = 256.0    # iterated on one level without friction, a contact's
                                     # stiffer side takes its neighbour-rule gamma over
                                     # this, the softer side its own times this: nearly
-                                    # a Neumann and a Dirichlet side (at most 4 under a
-                                    # neighbour hold_contrast times as stiff;
-                                    # robin_parameters.py); 1: unsplit
+                                    # a Neumann and a Dirichlet side (at most 4 under an
+                                    # indenter hold_contrast times as stiff as the
+                                    # base; robin_parameters.py); 1: unsplit
     bond_split: float = 16.0        # and a bond's sides, split by the coating's response
                                     # against the base's, further by this (frictionless,
                                     # one level; at most 16 in all); 1: that split alone

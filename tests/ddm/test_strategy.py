@@ -639,10 +639,9 @@ def test_a_contacts_sides_are_split_about_the_neighbour_rule():
     # hard coating (its face 1.07 times the base's): the indenter's
     assert _contact_gammas(gallery / "tin_on_steel.toml", contact_split=4.0) == \
         pytest.approx((0.25, 4.0))
-    # a roller of E/100 on steel: the base's, widening the rule's own asymmetry (by 4
-    # also by default: under a contrast of the bodies)
-    assert _contact_gammas(gallery / "polymer_roller_on_chromed_steel.toml") == \
-        pytest.approx((4.0, 0.25))
+    # a roller of E/100 on steel: the base's, widening the rule's own asymmetry
+    assert _contact_gammas(gallery / "polymer_roller_on_chromed_steel.toml",
+                           contact_split=4.0) == pytest.approx((4.0, 0.25))
     # a coating of 2 E, h2/a = 0.4, on the base: its face 1.8 times the indenter's
     assert _contact_gammas(SCENES_DIR / "cylinder_mm.toml", contact_split=4.0) == \
         pytest.approx((4.0, 0.25))
@@ -663,6 +662,11 @@ def test_a_contacts_sides_are_split_about_the_neighbour_rule():
     assert Settings().contact_split == 256.0
     stiffer, softer = _contact_gammas(gallery / "tin_on_steel.toml")
     assert stiffer == pytest.approx(1.0 / 256.0) and 4.0 < softer <= 256.0
+    softer, stiffer = _contact_gammas(gallery / "polymer_roller_on_chromed_steel.toml")
+    assert stiffer == pytest.approx(1.0 / 256.0) and 4.0 < softer <= 256.0
+    # but by 4 at the most under an indenter more than hold_contrast times as stiff as the
+    # base (its side, nearly free, lengthened the contact set's walk)
+    assert _contact_gammas(gallery / "near_rigid_cylinder.toml") == pytest.approx((0.25, 4.0))
 
 
 @pytest.mark.slow
