@@ -1,8 +1,9 @@
 """Iterations per contact set on the gallery's scenes, against the mesh level: what the
 Robin loop's inner solve costs where it iterates, on one level with the coatings inside
-the base's worker (Settings.bonds "inside", the default) and exchanged across their
-bonds, exchanged with a contact's and a bond's sides unsplit (Settings.contact_split and
-bond_split 1, against the default split), and with two levels (inner_solve
+the base's worker at the default split of the sides (Settings.bonds "inside",
+contact_split and bond_split: the defaults where the loop iterates), at the earlier
+defaults (the coatings exchanged across their bonds, the sides split by 4), exchanged
+with a contact's and a bond's sides unsplit (1), and with two levels (inner_solve
 "two-level", the coatings inside the base's worker; ``python -m studies.iterations``,
 ``make iterations``).
 
@@ -32,12 +33,14 @@ from studies.paths import RESULTS_DIR, gallery_files
 from studies.report import (Column, Report, command_line, print_table, progress_to_stderr,
                             report_beside, save_table, seconds, significant)
 
-# Each variant's settings: on one level the default split, each way of the bonds, and
-# exchanged unsplit; two levels, the coatings inside (their sides held, unsplit)
+# Each variant's settings: on one level the default split with the coatings inside, the
+# earlier defaults (split 4, exchanged), and exchanged unsplit; two levels, the coatings
+# inside (their sides held, unsplit)
 ONE_LEVEL = "inside"
 VARIANTS = {
     ONE_LEVEL: {"inner_solve": "iterate", "bonds": "inside"},
-    "exchanged": {"inner_solve": "iterate", "bonds": "exchanged"},
+    "split 4, exchanged": {"inner_solve": "iterate", "bonds": "exchanged",
+                           "contact_split": 4.0, "bond_split": 4.0},
     "exchanged, unsplit": {"inner_solve": "iterate", "bonds": "exchanged",
                            "contact_split": 1.0, "bond_split": 1.0},
     "two levels": {"inner_solve": "two-level", "bonds": "inside"},
@@ -92,10 +95,12 @@ def write_report(table, out, command="python -m studies.iterations"):
     report.text("Each gallery scene iterated on one level (inner_solve = iterate), its "
                 "coatings inside the base's worker (bonds = inside; a scene whose patch is "
                 "thicker than the contact keeps them exchanged: 'inside' says which ran) "
-                "and exchanged across their bonds; exchanged with a contact's two sides "
+                "at the default split of the sides; at the earlier defaults, exchanged "
+                "across their bonds with the sides split by 4 (contact_split = bond_split "
+                "= 4); exchanged with a contact's two sides "
                 "given the neighbour rule's coefficients unsplit and a bond's split by the "
-                "coating's response alone (contact_split = bond_split = 1, against the "
-                "defaults' 4: docs/method.md, Robin parameters); and with two levels "
+                "coating's response alone (contact_split = bond_split = 1: "
+                "docs/method.md, Robin parameters); and with two levels "
                 "(inner_solve = two-level, bonds = inside: every side held and unsplit, "
                 "docs/method.md, Two levels); from a cold start on this machine, one run "
                 "each.")
@@ -123,6 +128,14 @@ def write_report(table, out, command="python -m studies.iterations"):
                 + f" iterations; {significant(100 * growth, 2)} % more from level "
                 f"{levels[0]} to {levels[-1]}. Median time at level {levels[0]}: "
                 f"{significant(runs[runs.mesh_level == levels[0]].time_s.median())} s.")
+        # issue 28's bound: at most 30 iterations, and less than 20 % growth from the
+        # first level
+        per_scene = runs.pivot_table(index="scene", columns="mesh_level", values="final_set")
+        outside = [f"{scene} ({'/'.join(f'{n:.0f}' for n in row.dropna())})"
+                   for scene, row in per_scene.iterrows()
+                   if row.max() > 30 or row.max() > 1.2 * row.iloc[0]]
+        text += (f" Scenes whose final set exceeds 30 or grows by 20 % or more from the "
+                 f"first level: {', '.join(outside) if outside else 'none'}.")
         if variant != ONE_LEVEL:
             ratios = (runs.set_index(["scene", "mesh_level"]).time_s
                       / baseline.time_s).dropna().groupby("mesh_level")
