@@ -152,12 +152,12 @@ class Worker:
 
     def kill(self):
         """Kill the worker's process group and remove its FIFOs; safe to call twice."""
-        if self.process is not None and self.process.poll() is None:
+        if self.process is not None and self.process.returncode is None:
             try:
                 os.killpg(self.process.pid, signal.SIGKILL)
             except ProcessLookupError:
                 pass
-            self.process.wait()
+            _reap(self.process)
         for attribute in ("_request_fd", "_reply_fd"):
             fd = getattr(self, attribute)
             if fd is not None:
@@ -212,3 +212,16 @@ class Worker:
                     raise WorkerError(message)
         reply = b"".join(chunks).rstrip()
         return reply[:-len(b"end")]
+
+
+def _reap(process):
+    """Wait for a killed worker to exit, by os.waitpid, not Popen.wait: a signal that
+    interrupts Popen.poll between its lock's acquire and its try (CPython's lock and try
+    are not signal-safe) leaves that lock held, and Popen.wait then blocks for ever. A
+    run terminated by SIGTERM under load hung so in its clean-up (poll runs at every
+    reply), one worker killed and not reaped, the next never killed."""
+    try:
+        _, status = os.waitpid(process.pid, 0)
+    except ChildProcessError:       # reaped already, by Popen.poll
+        return
+    process.returncode = os.waitstatus_to_exitcode(status)

@@ -6,6 +6,7 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 
 import pytest
@@ -82,3 +83,24 @@ def test_a_dying_worker_ends_the_run_with_a_clear_error(tmp_path):
     assert "worker coating1 died: killed" in stderr
     _assert_nothing_left(scratch)
     assert not (tmp_path / "run" / "summary.json").exists()
+
+
+def test_a_worker_is_killed_and_reaped_even_where_a_signal_left_its_wait_lock_held(tmp_path):
+    """A signal that interrupts Popen.poll between its lock's acquire and its try leaves
+    the lock held (CPython's lock and try are not signal-safe), and Popen.wait would
+    then block for ever: a run terminated by SIGTERM under load hung so in its clean-up,
+    one worker killed and not reaped, the next never killed. Worker.kill reaps by
+    os.waitpid. Here a process stands in for the worker, its lock held as such a signal
+    leaves it."""
+    from orchestrate.workers.worker import Worker
+    worker = Worker.__new__(Worker)
+    worker.process = subprocess.Popen(["sleep", "60"], start_new_session=True)
+    worker._request_fd = worker._reply_fd = None
+    worker.request_path = worker.reply_path = str(tmp_path / "absent")
+    worker.process._waitpid_lock.acquire()
+    killing = threading.Thread(target=worker.kill, daemon=True)
+    killing.start()
+    killing.join(timeout=10)
+    assert not killing.is_alive(), "kill blocked"
+    assert worker.process.returncode == -signal.SIGKILL
+    assert not os.path.exists(f"/proc/{worker.process.pid}")      # reaped, not a zombie
