@@ -35,7 +35,7 @@ SCENE = SCENES_DIR / "gallery" / "near_rigid_cylinder.toml"
 # the indenter's modulus over the base's; None: rigid
 MODULI = (0.01, 0.1, 1.0, 10.0, 100.0, 1000.0, None)
 # (contact_split, bond_split): the defaults, and unsplit
-SPLITS = ((Settings().contact_split, Settings().bond_split), (1.0, 1.0))
+SPLITS = ((Settings.contact_split, Settings.bond_split), (1.0, 1.0))
 
 
 def _plane_strain(E, nu):

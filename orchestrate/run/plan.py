@@ -190,14 +190,12 @@ def _prepared(scene, settings):
     frictional = settings.inner_solve == AUTO and settings.two_levels and scene.frictional
     left_out = _coarse_left_out(problem, settings)
     if left_out is None and settings.two_levels and not frictional:
-        if coarse is None:
-            coarse = coarse_problem(solved, settings)
+        coarse = coarse_problem(solved, settings)
         left_out = _coarse_maps_left_out(coarse, settings)
     if left_out or frictional:
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
-        problem = discretize(solved, settings)
+        problem, coarse = discretize(solved, settings), None
     check_size(problem)
-    coarse = coarse if settings.two_levels else None
     strategy = plan_strategy(settings, problem, coarse, predicted, left_out)
     if strategy.inner_solve.planned == DIRECT:     # asked: its dense system must fit
         check_direct_size(problem)
