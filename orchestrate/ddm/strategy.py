@@ -192,12 +192,15 @@ def _solved_directly(sides, direct):
     return tuple(side.solved_directly() for side in sides) if direct else sides
 
 
-def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_out=None):
+def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_out=None,
+                  first_contact=None):
     """The Strategy of ``problem`` (a run's discrete problem, in b and E) under
     ``settings``; ``coarse``: the coarse level's problem where two levels are asked
     (Settings.two_levels), else None; ``half_width``: the a priori contact half-width
     (b), if known; ``coarse_left_out``: why auto left out the coarse level its mesh
-    level would take (run/plan.py), or None."""
+    level would take (run/plan.py), or None; ``first_contact``: the half-width the first
+    contact set is drawn to (b; estimate.first_contact_half_width), by default
+    ``half_width``."""
     paper = settings.method == PAPER
     theta, default_rule = settings.default_theta()
     inner_solve = _inner_solve(settings, problem, coarse, coarse_left_out)
@@ -234,7 +237,7 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_o
         coarse=(CoarseMesh(1, coarse_element_size(settings), _coarse_rule(settings))
                 if inner_solve.planned == TWO_LEVEL else None),
         knobs=LoopKnobs.of(settings),
-        first_contact=half_width if half_width and not paper else None,
+        first_contact=(first_contact or half_width) if half_width and not paper else None,
         workers=workers,
         bonds_inside=(tuple(i for i, interface in enumerate(problem.interfaces)
                             if interface.kind == "bond") if inside else ()))

@@ -90,6 +90,7 @@ a sphere: the shell 10 % off at the centre, where its form said 0.3 %).
 from dataclasses import dataclass
 import math
 
+from orchestrate.model.layered_contact import layered_half_width
 from orchestrate.model.scene import MODELS
 
 ANSWERS = {                     # the estimated answers, by the setting model_answers
@@ -271,6 +272,23 @@ def predicted_half_width(scene, a=None):
                                   1.0 / (compliance + (1 - coating.nu ** 2) / coating.E),
                                   scene.axisymmetric)
     return min(max(a, layer), max(a, _face_half_width(scene)))
+
+
+def first_contact_half_width(scene, predicted):
+    """The half-width the loop's first contact set is drawn to (Strategy.first_contact):
+    under a force in plane strain, the contact of the indenter with the coating under the
+    contact's centre as a layer on the base (layered_contact.py); else ``predicted``
+    (predicted_half_width, which sizes the mesh). Hertz's bounds leave a stiff coating's
+    set wide, and the loop shrinks it a point or two an update."""
+    force, radius = scene.load.force, relative_radius(scene)
+    under = [c for c in scene.coatings if c.start <= scene.contact_centre <= c.end]
+    if not force or scene.axisymmetric or math.isinf(radius) or not under:
+        return predicted
+    layer, base, indenter = under[0], scene.base, scene.indenter
+    return min(layered_half_width(force, radius, (layer.E, layer.nu, layer.thickness),
+                                  (base.E, base.nu),
+                                  None if indenter.rigid else (indenter.E, indenter.nu)),
+               _face_half_width(scene))
 
 
 # ---- the estimate ----------------------------------------------------------------------

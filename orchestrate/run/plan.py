@@ -50,7 +50,8 @@ from orchestrate.errors import LengthsError, ParameterError
 from orchestrate.mesh.discretization import contact_reach, discretize
 from orchestrate.mesh.problem_size import check_direct_size, check_size, estimated_dofs
 from orchestrate.model.estimate import (ANSWERS, contact_half_width, estimated_errors,
-                                        not_estimated, predicted_half_width, worst_error)
+                                        first_contact_half_width, not_estimated,
+                                        predicted_half_width, worst_error)
 from orchestrate.model.scene import MESH_LEVEL_LIMIT, check_compatible
 from orchestrate.model.units import dimensionless
 from orchestrate.run.validity import Say, mesh_warnings, scene_warnings
@@ -196,7 +197,8 @@ def _prepared(scene, settings):
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
         problem, coarse = discretize(solved, settings), None
     check_size(problem)
-    strategy = plan_strategy(settings, problem, coarse, predicted, left_out)
+    strategy = plan_strategy(settings, problem, coarse, predicted, left_out,
+                             first_contact_half_width(solved, predicted))
     if strategy.inner_solve.planned == DIRECT:     # asked: its dense system must fit
         check_direct_size(problem)
     chosen = scene.with_models([c.model for c in solved.coatings])

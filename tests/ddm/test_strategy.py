@@ -493,17 +493,20 @@ def test_a_coarser_coarse_level_gives_the_same_answer(tmp_path):
 
 
 def test_the_first_contact_set_is_the_predicted_one():
-    """Strategy.first_contact: the a priori half-width, under a force and under a descent
-    (from the force the descent takes); the paper's loop takes none. The first set is
-    the contact points within it; under a descent it is narrower than the overlap the
-    descent makes (the answer's half-width is about that over sqrt(2))."""
+    """Strategy.first_contact: under a force on a coating, the contact of the coating as
+    a layer on the base (estimate.first_contact_half_width: a stiff coating's, narrower
+    than the base's Hertz); under a descent, the a priori half-width (from the force the
+    descent takes); the paper's loop takes none. The first set is the contact points
+    within it; under a descent it is narrower than the overlap the descent makes (the
+    answer's half-width is about that over sqrt(2))."""
     from orchestrate.ddm.robin import first_contact_set, predicted_contact
     from orchestrate.ddm.state import StateLayout
-    from orchestrate.model.estimate import contact_half_width
+    from orchestrate.model.estimate import contact_half_width, first_contact_half_width
     scene, settings = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
     plan = prepare(scene, settings)
-    a = contact_half_width(plan.problem.scene)
+    a = first_contact_half_width(plan.problem.scene, contact_half_width(plan.problem.scene))
     assert plan.strategy.first_contact == pytest.approx(a)
+    assert a < 0.85 * contact_half_width(plan.problem.scene)
     layout = StateLayout(plan.problem.interfaces)
     predicted = predicted_contact(plan.problem, layout, plan.strategy.first_contact)
     psi = first_contact_set(plan.problem.scene, layout, layout.zeros(), predicted=predicted)

@@ -167,17 +167,22 @@ def test_a_compliant_coating_widens_the_predicted_contact():
     """A polymer film a hundredth of steel's modulus, about as thick as the bodies'
     contact is wide: pressed as a thin layer (Winkler) its contact is four times the
     bodies' Hertz estimate, and the solved one within 2 % of that; a stiff thin coating
-    (TiN on steel) leaves the bodies' estimate."""
-    from orchestrate.model.estimate import predicted_half_width
+    (TiN on steel) leaves the bodies' estimate. The first contact set is drawn to the
+    film's contact as a layer on the base (model/layered_contact.py): within an interface
+    element of the solved one's edge (a contact point's place)."""
+    from orchestrate.model.estimate import first_contact_half_width, predicted_half_width
     scene, settings = scene_and_settings(SCENES_DIR / "gallery" / "polymer_coating_on_steel.toml")
     plan = prepare(scene, settings)
     solved = plan.problem.scene
     a, predicted = contact_half_width(solved), predicted_half_width(solved)
     assert predicted > 3.5 * a
-    assert plan.strategy.first_contact == pytest.approx(predicted)
+    assert plan.strategy.first_contact == pytest.approx(first_contact_half_width(solved, predicted))
     import orchestrate
     run = orchestrate.solve(scene).summary
-    assert run["contact_half_width"] / plan.scales.length == pytest.approx(predicted, rel=0.02)
+    solved_half_width = run["contact_half_width"] / plan.scales.length
+    assert solved_half_width == pytest.approx(predicted, rel=0.02)
+    element = run["interface_element_size"] / plan.scales.length
+    assert abs(solved_half_width - plan.strategy.first_contact) < element
     assert 16 <= run["elements_across_contact"][0] <= 2 * 32      # sized to it
     tin = prepare(*scene_and_settings(TIN)).problem.scene
     assert predicted_half_width(tin) == contact_half_width(tin)

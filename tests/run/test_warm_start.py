@@ -66,7 +66,8 @@ def test_a_contact_set_grown_from_a_lighter_load_converges_iterating():
     correction of freefem/robin.idp. That correction had lost digits there (a residual
     3e-10 of the right-hand side's, against 1e-13): the loop then stagnated at a
     relative change of 2e-5 for 230 iterations and fell back to the direct solve (260
-    iterations). Refined, it takes 32 against a cold start's 21."""
+    iterations); refined, it takes 30. (A cold start takes 10, from its layered
+    estimate of the contact: orchestrate/model/layered_contact.py.)"""
     path = SCENES_DIR / "gallery" / "near_rigid_cylinder.toml"
     scene, settings = scene_and_settings(path)
     settings = replace(settings, mesh_level=1)
@@ -76,7 +77,7 @@ def test_a_contact_set_grown_from_a_lighter_load_converges_iterating():
         warm = orchestrate.solve(scene, settings, session=session, start_from=lighter)
         cold = orchestrate.solve(scene, settings, session=session)
     assert warm.summary["inner_solve_fallback"] is None
-    assert warm.summary["iterations"] < 2 * cold.summary["iterations"]
+    assert warm.summary["iterations"] < Settings().stagnation_window    # never stalled
     for key in ("peak_contact_stress", "total_force", "peak_interface_stress"):
         assert warm.summary[key] == pytest.approx(cold.summary[key], rel=TOLERANCE), key
 
