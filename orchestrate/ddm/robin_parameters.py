@@ -79,8 +79,7 @@ BOND_RATIO_LIMIT = 256.0
 # responses, and two elastic faces both respond as E* k / 2: the ratio is about the same
 # at every wavelength from the contact's width down to the element's, the map's
 # eigenvalues cluster, and the accelerated loop takes about as many iterations on every
-# mesh (the gallery's final contact sets at mesh levels 1/2/3, a base and its thin
-# coatings in one worker: TiN 13/13/14, DLC 16/18/14, against 33/34/38 at a split of 4).
+# mesh, far fewer than at a split of 4 (make iterations: results/iterations.md).
 # A small split (4: two coefficients matching the band's two ends, Gander's two-sided
 # optimised Robin conditions) contracts the band too, but by a factor that nears 1 as
 # the band widens with the mesh. A thin coating's bond is no such pair (its response is
