@@ -52,7 +52,7 @@ def layer_factor(t, E2, nu2, E3, nu3):
     # unknowns: the layer's down (A, B) and up (C, D) amplitudes, the base's (E, G)
     rows = [
         # top, z = 0 (down field at t = 0, up field at s = xi h): T = 0, S = -p (p = 1)
-        [-one, -(1 - 2 * nu2) * one, (one) * e, (1 - 2 * nu2 + t) * e, zero, zero],
+        [-one, -(1 - 2 * nu2) * one, e, (1 - 2 * nu2 + t) * e, zero, zero],
         [-one, -2 * (1 - nu2) * one, -e, -(2 * (1 - nu2) + t) * e, zero, zero],
         # bond, z = h (down field at t = xi h, up field at s = 0, the base's at 0):
         # U, W, S / 2 and T / 2 continuous
