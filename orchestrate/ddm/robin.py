@@ -717,11 +717,13 @@ class _ActiveSetLoop(_Loop):
         else:
             x = held_indenter_state(self.problem, layout)
         system = self.interface_system(x)
-        psi = first_contact_set(self.problem.scene, layout, x, supported=system is not None,
+        touching = layout.zeros() if self.strategy.first_contact_over_start else x
+        psi = first_contact_set(self.problem.scene, layout, touching,
+                                supported=system is not None,
                                 predicted=predicted_contact(self.problem, layout,
                                                             self.strategy.first_contact))
         predicted = (self.strategy.first_contact is not None
-                     and not np.any(state_penetration(layout, x) < 0))
+                     and not np.any(state_penetration(layout, touching) < 0))
         # the friction states after the contact points: under partial slip Cattaneo's
         # (predicted_friction_states) from a cold start, else all stick; all slip (full
         # sliding) otherwise

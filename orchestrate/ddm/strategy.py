@@ -132,6 +132,9 @@ class Strategy:
     # interpenetrates nowhere (robin.py's first_contact_set); None: the points touched
     # first (under a descent, those the first solve pushes through)
     first_contact: Optional[float] = None
+    # whether the first set is drawn to first_contact even from a start state that
+    # touches elsewhere: a warm start whose neighbour calibrated it (run/warm_start.py)
+    first_contact_over_start: bool = False
     # the workers, ((worker, (its subdomains, ...)), ...): every subdomain its own, or
     # (where Settings.bonds takes them inside) the base and its coatings one, COATED_BASE
     # (freefem/coated_base.edp); and the interfaces inside a worker (its bonds), which

@@ -56,7 +56,7 @@ from orchestrate.run.outputs import RunFiles, history_table, shell_table
 from orchestrate.run.plan import prepare
 from orchestrate.run.validity import (Say, edge_peak, elements_across, forms_edited_warning,
                                       run_warnings)
-from orchestrate.run.warm_start import start_state
+from orchestrate.run.warm_start import calibrated_half_width, start_state
 from orchestrate.workers import freefem
 from orchestrate.workers.provenance import forms_hashes, provenance
 from orchestrate.workers.session import Session
@@ -203,6 +203,15 @@ def _solve_once(scene, settings, out_dir, progress, overwrite, start_from, sessi
     strategy = plan.strategy         # how it is solved, decided once (ddm/strategy.py)
     start = (start_state(start_from, StateLayout(problem.interfaces))
              if start_from is not None else None)         # checked before any work
+    if (start is not None and strategy.first_contact and not scene.frictional
+            and not strategy.two_levels):
+        # the neighbour's answer calibrates this run's a priori set (friction keeps the
+        # neighbour's set: its states and slips go with it; two levels start from their
+        # coarse level's solution, not from the neighbour)
+        calibrated = calibrated_half_width(start_from, strategy.first_contact)
+        if calibrated is not None:
+            strategy = replace(strategy, first_contact=calibrated,
+                               first_contact_over_start=True)
     slip_origin = None
     if before is not None:           # the slips the step before left (robin_laws)
         layout = StateLayout(problem.interfaces)
