@@ -60,6 +60,7 @@ def test_a_neighbours_start_saves_iterations_and_changes_no_answer(coating_2d_ru
     assert (a.sigma_n - b.sigma_n).abs().max() < TOLERANCE * scale
 
 
+@pytest.mark.slow
 def test_a_warm_start_draws_its_first_set_to_the_estimate_its_neighbour_calibrated():
     """The near-rigid cylinder from its answer at half the force: the neighbour's own
     contact set, grown from, took 30 iterations (and, corrected by the low-rank identity
@@ -83,6 +84,7 @@ def test_a_warm_start_draws_its_first_set_to_the_estimate_its_neighbour_calibrat
         assert warm.summary[key] == pytest.approx(cold.summary[key], rel=TOLERANCE), key
 
 
+@pytest.mark.slow
 def test_kept_workers_whose_points_are_held_afresh_converge_as_fresh_ones():
     """The near-rigid cylinder under a descent, in one session: from its answer at half
     the descent, and then again cold on the workers that answer left. Corrected by the
