@@ -2,9 +2,9 @@
 where the loop's first contact set is drawn (Strategy.first_contact).
 
 Hertz's half-width of the base, and a stiff coating's own (estimate.predicted_half_width),
-bound the answer: a coating of 4 E, 0.5 b thick, under a near-rigid cylinder took the
-base's 1.52 b where the answer is 1.18-1.22 b, and the loop's contact set shrank from
-there a point or two an update (16 updates of one iteration each at mesh level 2). This
+bound the answer: a coating of 4 E, 0.5 b thick, under a rigid cylinder took the base's
+1.52 b where the answer is 1.18-1.22 b, and the loop's contact set shrank from there a
+point or two an update (15 updates, most of one iteration, at mesh level 2). This
 solves that contact itself, the bodies taken infinite and the coating a layer of its
 thickness everywhere:
 
