@@ -57,8 +57,8 @@ _SETTINGS_HELP = {
                    "plane-strain modulus over the stiffer body's) or equal",
     "bonds": "the active-set loop's: inside, the base and its coatings solved by one "
              "worker where the loop iterates (on one level, or two) and every patch is "
-             "thinner than the contact; auto, so on one level; exchanged, every coating its own worker, Robin-exchanged across its "
-             "bond",
+             "thinner than the contact; auto, so on one level; exchanged, every coating "
+             "its own worker, Robin-exchanged across its bond",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
     "L divides every mesh size by L",

@@ -9,8 +9,8 @@ contact keeps the half-width of the scene's own (about 1.5 b): only the contrast
 changes. Each scene is solved with default settings (auto's inner solve and coating
 model) and with the sides unsplit (contact_split = bond_split = 1, against the defaults':
 docs/method.md, Robin parameters; under an indenter more than hold_contrast times as
-stiff as the base the contact's split is at most 4), at mesh levels 1 and 2 (``--levels``), from a
-cold start, one run each. A row: the Robin iterations of the final contact set (the
+stiff as the base the contact's split is at most 4), at mesh levels 1 and 2
+(``--levels``), from a cold start, one run each. A row: the Robin iterations of the final contact set (the
 linear iterations its fixed point took; 1 where it was solved directly), the contact
 sets, all iterations, the time to answer and the inner solve used. The findings: the
 range of the final set's iterations over the moduli, per level and variant.
@@ -75,8 +75,8 @@ def study(out, levels=(1, 2), progress=print):
         for split in SPLITS:
             for modulus in MODULI:
                 row = measure(modulus, level, split)
-                progress(f"E1/E3 {row['indenter_over_base']} level {level} split {split[0]:g}: "
-                         f"{row['status']}")
+                progress(f"E1/E3 {row['indenter_over_base']} level {level} split "
+                         f"{split[0]:g}: {row['status']}")
                 rows.append(row)
     table = pd.DataFrame(rows)
     save_table(table, out)

@@ -73,8 +73,9 @@ BOND_RATIO_LIMIT = 256.0
 # A contact's two sides (rule "neighbour", iterated on one level, frictionless): the
 # stiffer side's coefficient is divided by the split (Settings.contact_split) and the
 # softer side's multiplied (capped at 1/theta), widening the neighbour rule's own
-# asymmetry. Split far (256, the default), the exchange nears a Dirichlet-Neumann one: the soft side
-# takes the stiff side's displacements, the stiff side the soft side's tractions. Its
+# asymmetry. Split far (256, the default), the exchange nears a Dirichlet-Neumann one:
+# the soft side takes the stiff side's displacements, the stiff side the soft side's
+# tractions. Its
 # error at wavenumber k is then multiplied by minus the ratio of the two faces'
 # responses, and two elastic faces both respond as E* k / 2: the ratio is about the same
 # at every wavelength from the contact's width down to the element's, the map's

@@ -33,6 +33,7 @@ wide) and against the loop's answers of the gallery's coated scenes
 (tests/model/test_layered_contact.py).
 """
 
+import functools
 import math
 
 import numpy as np
@@ -101,6 +102,7 @@ def _one_zone(influence, dx, force, radius):
     """The half-width of the one contact zone about x = 0 (the module's docstring, 2.)."""
     widest = CELLS_PER_HALF_WIDTH
 
+    @functools.cache
     def edge_pressure(m):
         """The pressure at the zone's edge when held on the points |i| <= m."""
         i = np.arange(-m, m + 1)

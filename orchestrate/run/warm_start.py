@@ -90,18 +90,16 @@ def start_state(start_from, layout):
 
     def refuse(why):
         raise ParameterError(f"start_from {where}: {why}", "start_from")
-    if in_memory:
-        summary = start_from.summary
-    else:
+    if not in_memory:
         folder = Path(start_from)
         if not folder.exists():
             refuse("no such folder")
         if not folder.is_dir():
             refuse("not a folder (a run's output folder is due)")
-        try:
-            summary = json.loads((folder / "summary.json").read_text())
-        except (OSError, ValueError):
-            refuse("holds no finished run (no readable summary.json)")
+    try:
+        summary = _summary(start_from)
+    except (OSError, ValueError):
+        refuse("holds no finished run (no readable summary.json)")
     if not isinstance(summary, dict) or not isinstance(summary.get("scene"), dict):
         refuse("its summary.json is not a run's")
     if not summary.get("converged"):
@@ -136,6 +134,13 @@ def start_state(start_from, layout):
                              tables["interface"], layout)
 
 
+def _summary(start_from):
+    """The summary of ``start_from``: a Result's, or its folder's summary.json."""
+    if hasattr(start_from, "summary"):
+        return start_from.summary
+    return json.loads((Path(start_from) / "summary.json").read_text())
+
+
 def calibrated_half_width(start_from, first_contact):
     """The half-width a warm start's first contact set is drawn to: this run's a priori
     one (Strategy.first_contact, b) times the neighbour's answer over its own a priori
@@ -145,8 +150,7 @@ def calibrated_half_width(start_from, first_contact):
     against a cold start's 10; the calibrated estimate took 10 (and 4 from its own
     answer, 9-18 from a neighbour in a coating's modulus or thickness, against 11-21
     cold). ``start_from``: as start_state's, already checked by it."""
-    summary = (start_from.summary if hasattr(start_from, "summary")
-               else json.loads((Path(start_from) / "summary.json").read_text()))
+    summary = _summary(start_from)
     own = (summary.get("strategy") or {}).get("first_contact")
     answer, zones = summary.get("contact_half_width"), summary.get("contact_zones") or []
     if not own or not answer or len(zones) != 1:
