@@ -37,12 +37,16 @@ def test_a_slow_map_does_not_lead_the_loop_away_from_the_predicted_set():
 
 @pytest.fixture(scope="module")
 def pads():
-    """The gallery's pads on one level, the return rule's scene, as auto solves them; and
-    on two levels, the coarse level taking the face's elements for the pads' narrow cells
-    (coarse.coarse_problem)."""
+    """The gallery's pads on one level as auto solves them, under their force and under
+    the descent that force takes; and on two levels, the coarse level taking the face's
+    elements for the pads' narrow cells (coarse.coarse_problem)."""
     scene, settings = load_scene(SCENES_DIR / "gallery" / "patches_and_bare_base.toml")
-    return (scene, orchestrate.solve(scene, settings).summary,
-            orchestrate.solve(scene, {**settings, "inner_solve": "two-level"}).summary)
+    one_level = orchestrate.solve(scene, settings).summary
+    pressed = replace(scene, load=replace(scene.load, force=None,
+                                          displacement=one_level["descent"]))
+    return (scene, one_level,
+            orchestrate.solve(scene, {**settings, "inner_solve": "two-level"}).summary,
+            orchestrate.solve(pressed, settings).summary)
 
 
 def test_a_zone_that_barely_touches_does_not_walk_the_contact_set(pads):
@@ -50,16 +54,31 @@ def test_a_zone_that_barely_touches_does_not_walk_the_contact_set(pads):
     steel beside it and the next pad's edge, which it barely reaches. On inexact iterates
     that edge's points entered and left together, update after update: 28 set changes and
     221 iterations (measured). An update that would return a point to the state an earlier
-    one took it from waits for a tolerance ten times tighter: 9 and 141 (measured; 5 and
-    64 with the contact's sides split far and the pads inside the base's worker). On one
-    level, as auto solves it."""
-    scene, summary, _ = pads
-    assert summary["converged"] and summary["inner_solve_used"] == "iterate"
-    assert summary["total_force"] == pytest.approx(scene.load.force, rel=1e-6)
-    assert summary["active_set_changes"] < 20 and summary["iterations"] < 200
-    forces = {name: interface["force"] for name, interface in summary["interfaces"].items()}
-    assert forces["contact-base1"] > 0.01 * forces["contact-coating1"]     # the bare steel
-    assert forces["contact-coating2"] > 0.0                                 # the next pad
+    one took it from waits for a tolerance ten times tighter: 9 and 141 (measured). Under
+    a force the first set is now the answer's (test below); under the descent that force
+    takes the set is still walked from the points within the a priori half-width: 10 set
+    changes with the wait, 16 without (measured, mesh level 1, one level as auto solves
+    it)."""
+    scene, forced, _, pressed = pads
+    assert pressed["converged"] and pressed["inner_solve_used"] == "iterate"
+    assert pressed["total_force"] == pytest.approx(scene.load.force, rel=1e-6)
+    assert pressed["active_set_changes"] <= 12 and pressed["iterations"] < 100
+    for summary in (forced, pressed):
+        forces = {name: interface["force"] for name, interface in summary["interfaces"].items()}
+        assert forces["contact-base1"] > 0.01 * forces["contact-coating1"]    # the bare steel
+        assert forces["contact-coating2"] > 0.0                                # the next pad
+
+
+def test_a_force_across_pads_and_bare_steel_starts_from_the_answers_contact_set(pads):
+    """Under a force, the first set of a contact that spans several faces is the
+    half-planes' contact across their actual gap (robin.profile_contact): the pads' answer
+    has 73 points, the middle pad's 35, 9 in the middle of the bare steel beside it and 29
+    of the next pad's; drawn to the layered contact's half-width the first set had 66 and
+    the loop walked 5 set changes, 64 iterations (measured); now none."""
+    scene, forced, _, _ = pads
+    assert forced["converged"] and forced["inner_solve_used"] == "iterate"
+    assert forced["total_force"] == pytest.approx(scene.load.force, rel=1e-6)
+    assert forced["active_set_changes"] == 0
 
 
 def test_two_levels_on_narrow_coating_cells_give_the_one_level_answer(pads):
@@ -67,7 +86,7 @@ def test_two_levels_on_narrow_coating_cells_give_the_one_level_answer(pads):
     fine level narrows them at the pads' ends: the one-level loop's answer, each run
     within eps_u = 1e-6 of the same fixed point (make gallery checks auto's against the
     monolithic solve: 1e-9 apart)."""
-    _, one_level, two_levels = pads
+    _, one_level, two_levels, _ = pads
     assert two_levels["converged"] and two_levels["inner_solve_used"] == "two-level"
     answers = [(run["peak_contact_stress"], run["descent"],
                 *[interface["force"] for interface in run["interfaces"].values()],

@@ -223,10 +223,12 @@ def test_the_mm_example_is_the_solver_scene_in_b_and_E():
 
 def test_a_run_in_b_and_E_starts_from_its_twin_in_mm(twins, tmp_path):
     """orchestrate/run/warm_start.py reads a run's files in their units: the twin in b and E,
-    started from the mm run's state, stops within a few iterations at its own answer."""
+    started from the mm run's state, stops at once at its own answer (each contact set
+    solved directly: 1 iteration, measured, against a cold run's 4, whose first set is
+    the half-planes' contact across the two patches and the bare base between them)."""
     mm, twin = twins
     summary = orchestrate.solve(twin.parent / "twin.toml").summary
     started = orchestrate.solve(twin.parent / "twin.toml", {}, start_from=mm).summary
-    assert started["iterations"] <= 6 < summary["iterations"]
+    assert started["iterations"] <= 2 < summary["iterations"]
     assert started["peak_contact_stress"] == pytest.approx(summary["peak_contact_stress"],
                                                            rel=1e-6)
