@@ -668,8 +668,7 @@ def predicted_contact(problem, layout, half_width):
     (profile_contact): 0 in it, infinite elsewhere."""
     if not half_width:
         return None
-    x1 = np.concatenate([problem.interfaces[i].position[:, 0] for i in layout.contact_indices])
-    distance = np.abs(x1 - problem.scene.contact_centre) / half_width
+    distance = _distance(problem, layout, half_width)
     across = profile_contact(problem, layout, distance)
     return distance if across is None else np.where(across, 0.0, np.inf)
 
@@ -684,10 +683,7 @@ def profile_contact(problem, layout, distance):
     cylinder touches only the middle of the gap) and that pad: the loop walked through
     six sets, 64 iterations at mesh level 1."""
     scene = problem.scene
-    if scene.load.force is None or scene.axisymmetric:
-        return None
-    spanned = [i for i, rows in layout.contact_slices() if np.any(distance[rows] <= 1.0)]
-    if len(spanned) < 2:
+    if not _spans_faces(problem, layout, distance):
         return None
     lower, upper = zip(*(face_strips(problem.interfaces[i].position[:, 0])
                          for i in layout.contact_indices))
@@ -697,6 +693,30 @@ def profile_contact(problem, layout, distance):
     solved = contact_pressure(np.concatenate(lower), np.concatenate(upper), layout.gap,
                               compliance, scene.load.force, mirrored=scene.symmetric)
     return None if solved is None else solved[0] > 0.0
+
+
+def _spans_faces(problem, layout, distance):
+    """Whether, under a force in plane strain, the points within the a priori contact
+    (``distance`` at most 1) lie on several contact faces."""
+    scene = problem.scene
+    if scene.load.force is None or scene.axisymmetric:
+        return False
+    return sum(bool(np.any(distance[rows] <= 1.0)) for _, rows in layout.contact_slices()) > 1
+
+
+def contact_spans_faces(problem, half_width):
+    """Whether ``problem``'s first contact set is the half-planes' contact across its
+    faces' gap (profile_contact) rather than the points within ``half_width`` (b)."""
+    if not half_width:
+        return False
+    layout = StateLayout(problem.interfaces)
+    return _spans_faces(problem, layout, _distance(problem, layout, half_width))
+
+
+def _distance(problem, layout, half_width):
+    """The contact points' distances from the contact's centre over ``half_width``."""
+    x1 = np.concatenate([problem.interfaces[i].position[:, 0] for i in layout.contact_indices])
+    return np.abs(x1 - problem.scene.contact_centre) / half_width
 
 
 def predicted_friction_states(problem, layout, half_width):

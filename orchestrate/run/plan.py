@@ -23,14 +23,21 @@ On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse lev
   took fewer iterations per contact set than two (the gallery's polymer coating at mesh
   level 2: 19 against 128, 2.2 s against 13.9 s; the paper's scene under coatings of
   E/10 and E/30: 15-21 against 19-38);
+- where the first contact set is the half-planes' contact across several contact faces'
+  gap (ddm/robin.py's profile_contact: a cylinder across pads and the bare base between
+  them), the answer's set or near it: the coarse level's first state adds little there,
+  and its loop took more iterations per contact set than one level's. Measured, one
+  level against two, mesh levels 2/3: the gallery's pads 6.3/16.1 s against 7.6/18.8 s
+  (final set 18/31 iterations against 49/70), the discrete example's shell patches
+  1.5/3.6 s against 2.0/3.8 s;
 - where the coarse level's maps would not pay, by the measure auto applies to a direct
   solve on that mesh (strategy.maps_would_pay, auto_direct_unknowns): probing them cost
   more than the iterations they save. Measured at mesh level 2 with the sides split on
   one level: the gallery's coated roller 6.8 s with two levels against 3.3 s with one,
   TiN 5.0 against 2.0 s, the thick ceramic 18.1 against 8.3 s, the anodised aluminium
-  3.7 against 1.8 s; where the maps pay (the paper's scenes, the discrete example's
-  shell patches) two levels were as fast or faster (the paper's scene at mesh level 3:
-  3.2 s against 3.8 s; the discrete example at level 2: 2.2 against 3.1 s).
+  3.7 against 1.8 s; where the maps pay (the paper's scenes) two levels were as fast or
+  faster (the paper's scene at mesh level 3: 3.1 s against 4.9 s, 16 iterations against
+  115).
 
 Below auto_two_level_mesh_level auto takes no coarse level. It had taken one on mesh level
 1 where the coarse level's maps cost at most a tenth of the fine ones to probe: the
@@ -44,6 +51,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
 from orchestrate.ddm.coarse import coarse_problem
+from orchestrate.ddm.robin import contact_spans_faces
 from orchestrate.ddm.robin_parameters import contrast_exceeds, soft_coating
 from orchestrate.ddm.strategy import DIRECT, maps_would_pay, plan_strategy
 from orchestrate.errors import LengthsError, ParameterError
@@ -138,11 +146,15 @@ def model_choice(scene, settings):
         return _decided_models(scene, settings)[1]
 
 
-def _coarse_left_out(problem, settings):
+def _coarse_left_out(problem, settings, first_contact):
     """Why auto leaves out the coarse level the mesh level would take, judged on the fine
-    problem (the module's text), or None."""
+    problem and the half-width its first contact set is drawn to (the module's text), or
+    None."""
     if settings.inner_solve != AUTO or not settings.two_levels:
         return None
+    if contact_spans_faces(problem, first_contact):
+        return ("the first contact set is the half-planes' contact across the faces' gap, "
+                "where one level answered faster")
     contrast = f"hold_contrast {settings.hold_contrast:g}"
     if contrast_exceeds(problem, settings.robin_sides, settings.hold_contrast):
         return (f"a side releases its inactive points under a neighbour more than "
@@ -189,7 +201,8 @@ def _prepared(scene, settings):
     # one level, its gamma, where the coarse level would not help (left_out), or has no
     # frictional solve (strategy._inner_solve)
     frictional = settings.inner_solve == AUTO and settings.two_levels and scene.frictional
-    left_out = _coarse_left_out(problem, settings)
+    first_contact = first_contact_half_width(solved, predicted)
+    left_out = _coarse_left_out(problem, settings, first_contact)
     if left_out is None and settings.two_levels and not frictional:
         coarse = coarse_problem(solved, settings)
         left_out = _coarse_maps_left_out(coarse, settings)
@@ -197,8 +210,7 @@ def _prepared(scene, settings):
         settings = replace(settings, auto_two_level_mesh_level=MESH_LEVEL_LIMIT + 1)
         problem, coarse = discretize(solved, settings), None
     check_size(problem)
-    strategy = plan_strategy(settings, problem, coarse, predicted, left_out,
-                             first_contact_half_width(solved, predicted))
+    strategy = plan_strategy(settings, problem, coarse, predicted, left_out, first_contact)
     if strategy.inner_solve.planned == DIRECT:     # asked: its dense system must fit
         check_direct_size(problem)
     chosen = scene.with_models([c.model for c in solved.coatings])
