@@ -38,8 +38,8 @@ import numpy as np
 from scipy.linalg import lu_factor, lu_solve
 from scipy.sparse import coo_matrix, csr_matrix
 
-from orchestrate.ddm.robin import (first_contact_set, predicted_contact, robin_laws,
-                                  updated_contact_set)
+from orchestrate.ddm.first_contact import predicted_contact
+from orchestrate.ddm.robin import first_contact_set, robin_laws, updated_contact_set
 from orchestrate.ddm.robin_parameters import side_parameters
 from orchestrate.mesh.discretization import discretize
 

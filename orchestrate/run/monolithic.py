@@ -13,7 +13,7 @@ import numpy as np
 from orchestrate.files.folders import WorkFolder
 from orchestrate.workers import freefem
 from orchestrate.ddm.contact import bond_traction, contact_stress, limits_on_axis
-from orchestrate.ddm.robin import predicted_contact
+from orchestrate.ddm.first_contact import predicted_contact
 from orchestrate.ddm.state import StateLayout
 from orchestrate.workers.problem_file import write_problem
 from orchestrate.workers.subdomains import (geometry_arguments, tangential_arguments,

@@ -24,8 +24,8 @@ On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse lev
   level 2: 19 against 128, 2.2 s against 13.9 s; the paper's scene under coatings of
   E/10 and E/30: 15-21 against 19-38);
 - where the first contact set is the half-planes' contact across several contact faces'
-  gap (ddm/robin.py's profile_contact: a cylinder across pads and the bare base between
-  them), the answer's set or near it: the coarse level's first state adds little there,
+  gap (ddm/first_contact.py's profile_contact: a cylinder across pads and the bare base
+  between them), the answer's set or near it: the coarse level's first state adds little there,
   and its loop took more iterations per contact set than one level's. Measured, one
   level against two, mesh levels 2/3: the gallery's pads 6.3/16.1 s against 7.6/18.8 s
   (final set 18/31 iterations against 49/70), the discrete example's shell patches
@@ -51,7 +51,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
 from orchestrate.ddm.coarse import coarse_problem
-from orchestrate.ddm.robin import contact_spans_faces
+from orchestrate.ddm.first_contact import contact_spans_faces
 from orchestrate.ddm.robin_parameters import contrast_exceeds, soft_coating
 from orchestrate.ddm.strategy import DIRECT, maps_would_pay, plan_strategy
 from orchestrate.errors import LengthsError, ParameterError

@@ -71,7 +71,7 @@ def test_a_zone_that_barely_touches_does_not_walk_the_contact_set(pads):
 
 def test_a_force_across_pads_and_bare_steel_starts_from_the_answers_contact_set(pads):
     """Under a force, the first set of a contact that spans several faces is the
-    half-planes' contact across their actual gap (robin.profile_contact): the pads' answer
+    half-planes' contact across their actual gap (first_contact.profile_contact): the pads' answer
     has 73 points, the middle pad's 35, 9 in the middle of the bare steel beside it and 29
     of the next pad's; drawn to the layered contact's half-width the first set had 66 and
     the loop walked 5 set changes, 64 iterations (measured); now none."""

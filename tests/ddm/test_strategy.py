@@ -499,7 +499,8 @@ def test_the_first_contact_set_is_the_predicted_one():
     descent takes); the paper's loop takes none. The first set is the contact points
     within it; under a descent it is narrower than the overlap the descent makes (the
     answer's half-width is about that over sqrt(2))."""
-    from orchestrate.ddm.robin import first_contact_set, predicted_contact
+    from orchestrate.ddm.first_contact import predicted_contact
+    from orchestrate.ddm.robin import first_contact_set
     from orchestrate.ddm.state import StateLayout
     from orchestrate.model.estimate import contact_half_width, first_contact_half_width
     scene, settings = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
@@ -586,7 +587,7 @@ def test_auto_leaves_the_coarse_level_out_where_its_maps_would_not_pay():
 
 def test_auto_leaves_the_coarse_level_out_where_the_first_set_spans_several_faces():
     """Where the first contact set is the half-planes' contact across several contact
-    faces' gap (robin.profile_contact), auto iterates on one level: the gallery's pads
+    faces' gap (first_contact.profile_contact), auto iterates on one level: the gallery's pads
     and the discrete example's shell patches at mesh levels 2/3 answered faster so (pads
     6.3/16.1 s against 7.6/18.8 s, patches 1.5/3.6 s against 2.0/3.8 s, run/plan.py),
     though their coarse level's maps would pay; asked, two levels are kept."""
