@@ -637,8 +637,9 @@ def first_contact_set(scene, layout, x, supported=False, predicted=None):
     push the indenter through the whole overlap, about sqrt(2) wider than the answer's
     set), else under a force, or when ``supported``, the points the indenter touches first
     (without a support the problem of a force is singular, and so is the whole interface
-    system of a body held only by its contact: interface_system.py). A set near the answer's saves the semi-smooth updates that
-    grow one from a point (Strategy.first_contact)."""
+    system of a body held only by its contact: interface_system.py). A set near the
+    answer's saves the semi-smooth updates that grow one from a point
+    (Strategy.first_contact; ddm/first_contact.py)."""
     psi = (state_penetration(layout, x) < 0).astype(float)
     if (scene.load.force is not None or supported or predicted is not None) and not psi.any():
         if predicted is not None and np.any(predicted <= 1.0):
@@ -653,8 +654,9 @@ class _ActiveSetLoop(_Loop):
     Psi is updated once the inner residual is below active_set_tolerance (the first,
     predicted set below predicted_set_tolerance), its entries where the iterate decides
     one (decided_entries). Should Psi return to a set already tried, the updates were
-    too inexact to tell the edge points apart: from then on they wait for a tolerance ten times tighter at each cycle, down to eps_u, and for the
-    displacements' estimated error within it; only a cycle under eps_u stops the loop.
+    too inexact to tell the edge points apart: from then on they wait for a tolerance
+    ten times tighter at each cycle, down to eps_u, and for the displacements' estimated
+    error within it; only a cycle under eps_u stops the loop.
     Under partial slip a cycle first keeps the sticking points whose contact it flips in
     contact, slipping (slipping_at_flips), unless that set was tried too.
 

@@ -129,8 +129,10 @@ class Strategy:
     knobs: LoopKnobs
     # the first contact set: the points within this a priori contact half-width (b;
     # model/estimate.py, under a descent from the force it takes) where the first state
-    # interpenetrates nowhere (robin.py's first_contact_set); None: the points touched
-    # first (under a descent, those the first solve pushes through)
+    # interpenetrates nowhere (robin.py's first_contact_set), or where those lie on
+    # several contact faces under a force, the half-planes' contact across the faces'
+    # gap (ddm/first_contact.py); None: the points touched first (under a descent, those
+    # the first solve pushes through)
     first_contact: Optional[float] = None
     # whether the first set is drawn to first_contact even from a start state that
     # touches elsewhere: a warm start whose neighbour calibrated it (run/warm_start.py)

@@ -57,7 +57,8 @@ def contact_pressure(lower, upper, gap, compliance, force, mirrored=False):
     """(pressure on each strip, approach) of the contact across ``gap`` (one value per
     strip [lower, upper]) under a ``force`` per unit length (the whole contact's, mirror
     included), the gap closed at the strips' centres; None where the active sets do not
-    settle. The strips may come from several faces (face_strips), in any order."""
+    settle or a set's system is singular (strips of no width). The strips may come from
+    several faces (face_strips), in any order."""
     lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
     gap = np.asarray(gap, dtype=float)
     widths = (upper - lower) * (2.0 if mirrored else 1.0)
@@ -65,7 +66,10 @@ def contact_pressure(lower, upper, gap, compliance, force, mirrored=False):
     active = gap <= gap.min() + 1e-12 * max(gap.max(), 1e-300)
     seen = set()
     for _ in range(MAX_STEPS):
-        p, delta = _solve_active(c, gap, widths, active, force)
+        try:
+            p, delta = _solve_active(c, gap, widths, active, force)
+        except np.linalg.LinAlgError:
+            return None
         g = gap - delta + c @ p
         leaving = active & (p < 0.0)
         entering = ~active & (g < 0.0)

@@ -25,8 +25,8 @@ On a mesh fine enough for two levels, inner_solve = "auto" leaves the coarse lev
   E/10 and E/30: 15-21 against 19-38);
 - where the first contact set is the half-planes' contact across several contact faces'
   gap (ddm/first_contact.py's profile_contact: a cylinder across pads and the bare base
-  between them), the answer's set or near it: the coarse level's first state adds little there,
-  and its loop took more iterations per contact set than one level's. Measured, one
+  between them), the answer's set or near it: the coarse level's first state adds
+  little there, and its loop took more iterations per contact set than one level's. Measured, one
   level against two, mesh levels 2/3: the gallery's pads 6.3/16.1 s against 7.6/18.8 s
   (final set 18/31 iterations against 49/70), the discrete example's shell patches
   1.5/3.6 s against 2.0/3.8 s;
