@@ -25,9 +25,9 @@ from orchestrate.errors import (EXIT_CONVERGED, EXIT_FAILED, EXIT_INTERNAL, EXIT
                      EXIT_REFUSED, Interrupted, ParameterError, RunFailed, SystemFailure,
                      WarnedBeforeWork)
 from orchestrate.workers.freefem import FreeFemMissing
-from orchestrate.model.scene import (BONDS, INNER_SOLVES, KNOB_RANGES, METHODS,
-                                     MODEL_ANSWERS, MODEL_CHOICES, ROBIN_SIDES, WORKERS,
-                                     Settings)
+from orchestrate.model.scene import (BONDS, FORCE_BALANCES, INNER_SOLVES, KNOB_RANGES,
+                                     METHODS, MODEL_ANSWERS, MODEL_CHOICES, ROBIN_SIDES,
+                                     WORKERS, Settings)
 from orchestrate.model.scene_file import SETTINGS_LENGTHS, SHORTHANDS, scene_and_settings
 
 EXIT_STATUSES = """exit status:
@@ -59,6 +59,10 @@ _SETTINGS_HELP = {
              "worker where the loop iterates (on one level, or two) and every patch is "
              "thinner than the contact; auto, so on one level; exchanged, every coating "
              "its own worker, Robin-exchanged across its bond",
+    "force_balance": "under a force, where the active-set loop iterates on one level "
+                     "without friction: auto, the partner of the stamp carries its force at "
+                     "every iteration and the stamp's sides release their inactive points; "
+                     "off, neither",
     "rho": "relaxation of (24), in (0, 1]", "eps_u": "tolerance on the relative change",
     "max_iterations": "Robin iterations at most", "mesh_level": "1 = the paper's mesh; "
     "L divides every mesh size by L",
@@ -128,7 +132,7 @@ _SETTINGS_HELP = {
 }
 _CHOICES = {"model": MODEL_CHOICES, "method": METHODS, "inner_solve": INNER_SOLVES,
             "workers": WORKERS, "robin_sides": ROBIN_SIDES, "bonds": BONDS,
-            "model_answers": MODEL_ANSWERS}
+            "force_balance": FORCE_BALANCES, "model_answers": MODEL_ANSWERS}
 
 
 def _option(name):

@@ -47,6 +47,7 @@ from orchestrate.ddm.contact import penetration, updated_active_set
 from orchestrate.ddm.first_contact import (held_indenter_state, predicted_contact,
                                            predicted_friction_states)
 from orchestrate.faults import checkpoint
+from orchestrate.ddm.force_balance import ForceBalance
 from orchestrate.ddm.interface_system import InterfaceSystem
 from orchestrate.ddm.state import StateLayout
 from orchestrate.model.scene import Settings
@@ -444,6 +445,9 @@ class _Loop:
         self.descent = None
         self.estimate = math.inf
         self.direct = False       # whether this iteration solved its contact set directly
+        partner = strategy.force_balance
+        self.balance = (ForceBalance(problem, partner, strategy.sides_of(problem, partner))
+                        if partner is not None else None)
 
     slip_origin = None        # a load path's slips at the step before (robin_laws)
 
@@ -458,7 +462,13 @@ class _Loop:
         laws, image, seconds = self.laws(psi, self.direct), x, {"wait": 0.0}
         for group in self.sweep:
             data = robin_data(self.layout, image, laws)
+            balance = (self.balance if self.balance is not None and not self.direct
+                       and self.balance.applies(group) else None)
+            if balance is not None:
+                data = balance.balanced(data)
             traces, group_seconds, descent = self.solve(data, group)
+            if balance is not None:
+                data, traces = balance.settled(data, traces, self.solve)
             image = with_bond_tractions(self.layout,
                                         state_after_solve(self.layout, data, traces, image),
                                         self.strategy.bonds_inside, self.theta)

@@ -143,6 +143,9 @@ class Strategy:
     # the loop does not exchange
     workers: tuple = ()
     bonds_inside: tuple = ()
+    # under a force, the worker that carries the stamp's force on its contact sides at
+    # every iteration (ddm/force_balance.py; Settings.force_balance), else None
+    force_balance: Optional[str] = None
 
     def sides_of(self, problem, worker):
         """(interface index, side index) of every side of a worker's subdomains, in their
@@ -221,6 +224,7 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_o
                   "coatings inside the base's worker (bonds 'inside'), for the maps of each "
                   "worker apart would not pay (weighted by their estimated dofs)"))
     workers = _workers(problem, inside)
+    balanced = _force_balance(settings, problem, inner_solve, workers)
     return Strategy(
         loop=settings.method,
         # the active-set loop solves the coatings from the bodies' fresh traces (a
@@ -233,7 +237,8 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_o
         sides=_solved_directly(side_parameters(problem, problem.robin, settings.robin_sides,
                                                settings.hold_contrast, paper,
                                                hold_all=inner_solve.planned == TWO_LEVEL,
-                                               split_sides=inner_solve.planned != TWO_LEVEL),
+                                               split_sides=inner_solve.planned != TWO_LEVEL,
+                                               release_stamp=balanced is not None),
                                inner_solve.planned == DIRECT),
         inner_solve=inner_solve,
         theta=Parameter(settings.theta, "b/E", problem.penalty,
@@ -245,7 +250,31 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_o
         first_contact=(first_contact or half_width) if half_width and not paper else None,
         workers=workers,
         bonds_inside=(tuple(i for i, interface in enumerate(problem.interfaces)
-                            if interface.kind == "bond") if inside else ()))
+                            if interface.kind == "bond") if inside else ()),
+        force_balance=balanced)
+
+
+def _force_balance(settings, problem, inner_solve, workers):
+    """The worker that carries the stamp's force at every iteration (Settings.force_balance
+    "auto"), or None. Under a force, where the active-set loop iterates on one level (its
+    offset is a correction of the iterates: a contact set solved directly from the maps
+    is solved at once, and two levels' coarse level models the loop unbalanced), without
+    friction (whose slip also answers the stamp's tangential force), and where one
+    worker, not the stamp's, holds every contact's side B. Measured on the gallery's and
+    the contrast study's scenes (docs/method.md, "The Robin loop")."""
+    scene = problem.scene
+    if (settings.force_balance == "off" or scene.load.force is None
+            or inner_solve.planned not in (ITERATE, DIRECT_OR_ITERATE)
+            or any(interface.kind == "friction" for interface in problem.interfaces)):
+        return None
+    partners = {worker for worker, names in workers for i, side in problem.sides_of(*names)
+                if problem.interfaces[i].kind == "contact" and side == 1}
+    if len(partners) != 1:
+        return None
+    partner = partners.pop()
+    if any(problem.subdomains[name].stamp for name in dict(workers)[partner]):
+        return None
+    return partner
 
 
 def _bonds_inside(settings, problem, inner_solve, half_width):

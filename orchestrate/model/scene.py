@@ -62,6 +62,7 @@ INNER_SOLVES = ("auto", "direct", "iterate", "two-level")   # a contact set's fi
 ROBIN_SIDES = ("neighbour", "equal")   # each interface side's gamma (ddm/robin_parameters.py)
 MODEL_ANSWERS = ("normal", "all")            # what auto's tolerance covers (estimate.ANSWERS)
 BONDS = ("auto", "inside", "exchanged")  # the active-set loop's bonds (ddm/strategy.py)
+FORCE_BALANCES = ("auto", "off")        # the stamp's partner balanced (ddm/force_balance.py)
 WORKERS = ("persistent", "fresh")
 PAPER_THETA = 1e-3     # b/E: the paper's penalty, the default of its loop
 MESH_LEVEL_LIMIT = 16   # the paper's mesh refined 16 times: about 7 million unknowns
@@ -811,6 +812,12 @@ class Settings:
                                    # bodies (hold_contrast); "exchanged", every coating
                                    # its own worker, the bonds Robin-exchanged as the
                                    # paper's loop exchanges them
+    force_balance: str = "auto"    # under a force, where the active-set loop iterates on
+                                   # one level without friction: "auto", the worker of
+                                   # every contact's side B carries the stamp's force at
+                                   # each iteration (orchestrate/ddm/force_balance.py),
+                                   # and the stamp's sides release their inactive points;
+                                   # "off", neither
     rho: float = 0.5               # relaxation (24), in (0, 1]
     eps_u: float = 1.0e-6          # the relative error at which a run stops (robin.py)
     max_iterations: int = 3000
@@ -935,6 +942,7 @@ class Settings:
         _choice("inner_solve", self.inner_solve, INNER_SOLVES)
         _choice("robin_sides", self.robin_sides, ROBIN_SIDES)
         _choice("bonds", self.bonds, BONDS)
+        _choice("force_balance", self.force_balance, FORCE_BALANCES)
         _choice("model_answers", self.model_answers, MODEL_ANSWERS)
         _require(not (self.method == "paper" and self.inner_solve == "direct"), "inner_solve",
                  "inner_solve = 'direct' needs method = 'active-set': the paper's loop "

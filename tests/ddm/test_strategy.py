@@ -770,3 +770,30 @@ def test_a_direct_solve_whose_interface_system_outgrows_the_memory_is_refused():
     auto = prepare(scene, Settings(memory_limit=2.0)).strategy.inner_solve
     assert auto.fallback is None and "dense interface system" in auto.rule
     assert prepare(scene, Settings(memory_limit=8.0)).strategy.inner_solve.fallback == DIRECT
+
+
+def test_under_a_force_the_stamps_partner_carries_it_where_the_loop_iterates_on_one_level():
+    """The stamp's partner is balanced (ddm/force_balance.py) under a force where the
+    active-set loop iterates on one level without friction and one worker holds every
+    contact's side B; the stamp's sides then release their inactive points, which under
+    a neighbour 1000 times softer they held."""
+    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
+    plan = prepare(scene, Settings(mesh_level=2))
+    assert plan.strategy.force_balance == COATED_BASE
+    stamp = [side for side in plan.strategy.sides if side.subdomain == "indenter"]
+    assert stamp and not any(side.hold_inactive for side in stamp)
+    off = prepare(scene, Settings(mesh_level=2, force_balance="off")).strategy
+    assert off.force_balance is None
+    assert all(side.hold_inactive for side in off.sides if side.subdomain == "indenter")
+    # each contact set solved directly, two levels, bonds exchanged (the contact's sides
+    # B in two workers): none
+    for values in ({"inner_solve": "direct"}, {"inner_solve": "two-level"},
+                   {"bonds": "exchanged"}):
+        assert prepare(scene, Settings(mesh_level=2, **values)).strategy.force_balance is None
+    # a rigid stamp's partner is the bare block's coated base too
+    rigid, _ = scene_and_settings(SCENES_DIR / "gallery" / "rigid_cylinder.toml")
+    assert prepare(rigid, Settings(mesh_level=2)).strategy.force_balance == COATED_BASE
+    # under a descent, and with friction, none
+    assert prepare(paper_scene(), Settings(inner_solve="iterate")).strategy.force_balance is None
+    friction, _ = scene_and_settings(SCENES_DIR / "partial_slip.toml")
+    assert prepare(friction, Settings()).strategy.force_balance is None
