@@ -102,6 +102,12 @@ CONTACT_TIE = 1.5
 # one 55 against 27. Under a softer indenter the far split is the faster (E1/E3 = 0.1:
 # 13/15 iterations against 23/28, 0.01: 7/11 against 10/14).
 CONTACT_SPLIT_UNDER_CONTRAST = 4.0
+# Where the stamp's partner carries its force (force_balance.py) the walk was the
+# descent's, found at once: split wider, the final set took fewer iterations at mesh
+# level 3 (splits 4/8/16/32: the contrast study's E1/E3 = 10 23/17/16/20, E1/E3 = 100
+# 14/10/11/14, the gallery's near-rigid cylinder 10/7/7/9, steel on coated polymer
+# 17/13/10/10; at 256, E1/E3 = 10 31), at levels 1 and 2 about as many or fewer.
+CONTACT_SPLIT_BALANCED_UNDER_CONTRAST = 16.0
 
 
 def _stiff_indenter(stiffness, interface, hold_contrast):
@@ -203,7 +209,7 @@ def bond_ratio(problem, coating):
 
 
 def side_parameters(problem, gamma, rule, hold_contrast, paper=False, hold_all=False,
-                    split_sides=True, release_stamp=False):
+                    split_sides=True, balanced=False):
     """Every side's SideParameter, in the order of problem.interfaces, sides A then B.
     ``gamma``: the run's Robin parameter in the solver's units (a side's is never above
     1/theta, as the run's is not: Settings.robin_choice); ``rule``: NEIGHBOUR or
@@ -213,10 +219,11 @@ def side_parameters(problem, gamma, rule, hold_contrast, paper=False, hold_all=F
     Settings.bond_split without friction), and a frictionless contact's
     (Settings.contact_split), where the loop iterates on one level (split
     on both levels, the coated roller took 68-76 iterations at mesh level 2 against 37-46
-    unsplit); ``release_stamp``: the stamp's sides release their inactive points
-    whatever its stiffness, where its partner carries its force (force_balance.py):
-    held, they hold back the descent the balance sets at once (measured: the contrast
-    study's E1/E3 = 10 at mesh level 2, 29 iterations balanced and held, 21 released)."""
+    unsplit); ``balanced``: the stamp's partner carries its force (force_balance.py),
+    so the stamp's sides release their inactive points whatever its stiffness (held,
+    they hold back the descent the balance sets at once: the contrast study's E1/E3 =
+    10 at mesh level 2, 29 iterations balanced and held, 21 released) and a contact
+    under a stiff indenter is split up to CONTACT_SPLIT_BALANCED_UNDER_CONTRAST."""
     subdomains = problem.subdomains
     base = _base(problem)
     # a thin coating counts as the base it is bonded to: at the contact's scale the
@@ -236,7 +243,7 @@ def side_parameters(problem, gamma, rule, hold_contrast, paper=False, hold_all=F
             scale = stiffness[neighbour] / reference if rule == NEIGHBOUR and not paper else 1.0
             hold = not paper and (hold_all or (
                 stiffness[own] >= hold_contrast * stiffness[neighbour]
-                and not (release_stamp and subdomains[own].stamp)))
+                and not (balanced and subdomains[own].stamp)))
             direct_gamma = min(gamma * scale, 1.0 / problem.penalty)
             if interface.kind == "bond" and rule == NEIGHBOUR and split_sides and not paper:
                 ratio = bond_ratio(problem, interface.sides[0].subdomain)
@@ -245,7 +252,8 @@ def side_parameters(problem, gamma, rule, hold_contrast, paper=False, hold_all=F
                 scale *= split if side == 0 else 1.0 / split
             if (interface.kind == "contact" and rule == NEIGHBOUR and split_sides
                     and not paper and not frictional):
-                split = (min(contact_split, CONTACT_SPLIT_UNDER_CONTRAST)
+                split = (min(contact_split, CONTACT_SPLIT_BALANCED_UNDER_CONTRAST if balanced
+                                 else CONTACT_SPLIT_UNDER_CONTRAST)
                          if _stiff_indenter(stiffness, interface, hold_contrast)
                          else contact_split)
                 scale *= (1.0 / split if _smaller_contact_side(problem, own, neighbour, side)

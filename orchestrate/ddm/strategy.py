@@ -238,7 +238,7 @@ def plan_strategy(settings, problem, coarse=None, half_width=None, coarse_left_o
                                                settings.hold_contrast, paper,
                                                hold_all=inner_solve.planned == TWO_LEVEL,
                                                split_sides=inner_solve.planned != TWO_LEVEL,
-                                               release_stamp=balanced is not None),
+                                               balanced=balanced is not None),
                                inner_solve.planned == DIRECT),
         inner_solve=inner_solve,
         theta=Parameter(settings.theta, "b/E", problem.penalty,

@@ -23,7 +23,8 @@ import pytest
 import orchestrate
 from orchestrate.cli import build_parser, main
 from orchestrate.ddm.robin import ConvergenceMonitor, run_robin_loop
-from orchestrate.ddm.robin_parameters import CONTACT_SPLIT_UNDER_CONTRAST
+from orchestrate.ddm.robin_parameters import (CONTACT_SPLIT_BALANCED_UNDER_CONTRAST,
+                                              CONTACT_SPLIT_UNDER_CONTRAST)
 from orchestrate.ddm.strategy import (COATED_BASE, DIRECT, DIRECT_OR_ITERATE, ITERATE,
                                       NO_INNER_SOLVE, TWO_LEVEL, LoopKnobs)
 from orchestrate.errors import ParameterError
@@ -296,7 +297,13 @@ def test_the_record_in_a_scene_whose_stiffer_body_is_not_of_modulus_one():
     assert record["gamma"]["scene_value"] == pytest.approx(1000.0 * settings.robin_parameter)
     assert record["theta"]["scene_value"] == pytest.approx(settings.theta / 1000.0)
     # the base's side of the contact: the indenter's coefficient, times the contact's
-    # split (the scene iterates on one level; at most 4 under the indenter's contrast)
+    # split (the scene iterates on one level; under the indenter's contrast at most 16
+    # where the base carries the stamp's force, as under this force, else 4)
+    assert record["force_balance"] == COATED_BASE
+    assert max(side["scene_gamma"] for side in record["sides"]) == pytest.approx(
+        CONTACT_SPLIT_BALANCED_UNDER_CONTRAST * record["gamma"]["scene_value"])
+    off = prepare(scene, replace(settings, force_balance="off"))
+    record = json.loads(json.dumps(off.strategy.record(off.scales, scene.units)))
     assert max(side["scene_gamma"] for side in record["sides"]) == pytest.approx(
         CONTACT_SPLIT_UNDER_CONTRAST * record["gamma"]["scene_value"])
 
@@ -679,9 +686,13 @@ def test_a_contacts_sides_are_split_about_the_neighbour_rule():
     assert stiffer == pytest.approx(1.0 / 256.0) and 4.0 < softer <= 256.0
     softer, stiffer = _contact_gammas(gallery / "polymer_roller_on_chromed_steel.toml")
     assert stiffer == pytest.approx(1.0 / 256.0) and 4.0 < softer <= 256.0
-    # but by 4 at the most under an indenter more than hold_contrast times as stiff as the
-    # base (its side, nearly free, lengthened the contact set's walk)
-    assert _contact_gammas(gallery / "near_rigid_cylinder.toml") == pytest.approx((0.25, 4.0))
+    # but under an indenter more than hold_contrast times as stiff as the base (its side,
+    # nearly free, lengthened the contact set's walk) by 16 at the most where the base
+    # carries the stamp's force (force_balance), else by 4
+    assert _contact_gammas(gallery / "near_rigid_cylinder.toml") == \
+        pytest.approx((1 / 16.0, 16.0))
+    assert _contact_gammas(gallery / "near_rigid_cylinder.toml",
+                           force_balance="off") == pytest.approx((0.25, 4.0))
 
 
 @pytest.mark.slow
