@@ -46,8 +46,8 @@ from orchestrate.ddm.acceleration import Anderson
 from orchestrate.ddm.contact import penetration, updated_active_set
 from orchestrate.ddm.first_contact import (held_indenter_state, predicted_contact,
                                            predicted_friction_states)
-from orchestrate.faults import checkpoint
 from orchestrate.ddm.force_balance import ForceBalance
+from orchestrate.faults import checkpoint
 from orchestrate.ddm.interface_system import InterfaceSystem
 from orchestrate.ddm.state import StateLayout
 from orchestrate.model.scene import Settings

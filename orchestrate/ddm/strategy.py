@@ -170,7 +170,8 @@ class Strategy:
             return self
         return replace(self, sides=_solved_directly(self.sides, direct),
                        inner_solve=replace(self.inner_solve, decided=DIRECT if direct
-                                           else ITERATE, decided_on=weighed))
+                                           else ITERATE, decided_on=weighed),
+                       force_balance=None if direct else self.force_balance)
 
     def record(self, scales, units):
         """summary.json's "strategy": in b and E, theta and gamma also in the scene's

@@ -160,5 +160,5 @@ def test_balanced_the_loop_answers_the_same_in_fewer_iterations(contrast_runs):
     assert balanced.summary["converged"] and unbalanced.summary["converged"]
     for name in ("peak_contact_stress", "contact_half_width"):
         assert balanced.summary[name] == pytest.approx(unbalanced.summary[name], rel=1e-6)
-    # measured at mesh level 1: 17 iterations against 34
+    # measured at mesh level 1: 16 iterations against 34
     assert balanced.summary["iterations"] < 0.75 * unbalanced.summary["iterations"]

@@ -316,6 +316,10 @@ def test_a_pending_inner_solve_is_recorded_once_decided():
     assert decided.inner_solve.decided_on == weighed and strategy.inner_solve.pending
     assert decided.decided(True, {}) is decided          # decided once
     assert strategy.decided(True, {}).inner_solve.decided == DIRECT
+    # a contact set solved directly is solved at once: no partner balanced then
+    balanced = replace(strategy, force_balance="base")
+    assert balanced.decided(True, {}).force_balance is None
+    assert balanced.decided(False, {}).force_balance == "base"
 
 
 # ---- the loop reads its knobs: springs for workers ----------------------------------------
