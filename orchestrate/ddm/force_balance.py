@@ -54,6 +54,7 @@ class ForceBalance:
             for i, side in self.sides}
         self._alpha = None          # the partner's alpha its response was probed at
         self._response = None       # M b, by side
+        self._per_offset = None     # F(g + b) - F(g) at that alpha
         self._reference = None      # (the data g of the last solve, its force F(g))
 
     def applies(self, group):
@@ -88,18 +89,18 @@ class ForceBalance:
         """``data`` with the partner's shifted by the offset that carries the force,
         predicted from its last solve where its matrix has not changed since; else
         ``data`` as they are (``settled`` then probes the response)."""
-        if not self._probed_at(data) or self._reference is None:
+        if not self._probed_at(data):       # settled probes it (and sets the reference)
             return data
         reference, force = self._reference
         step = {key: np.atleast_2d(data[key][1]) - reference[key] for key in self.sides}
-        predicted = force + self._gradient_dot(data, step)
-        return self._shifted(data, self._offset(data, predicted))
+        return self._shifted(data, self._offset(force + self._gradient_dot(data, step)))
 
-    def _offset(self, data, force):
-        """The offset that takes the force of a solve of ``data`` from ``force`` to the
-        stamp's; 0 where the shift carries none (no point of side B in contact)."""
-        per_offset = self._gradient_dot(data, self.direction)
-        return (self.force - force) / per_offset if per_offset != 0.0 else 0.0
+    def _offset(self, force):
+        """The offset that takes a solve's force from ``force`` to the stamp's; 0 where
+        the shift carries none (no point of side B in contact)."""
+        if self._per_offset == 0.0:
+            return 0.0
+        return (self.force - force) / self._per_offset
 
     def settled(self, data, traces, solve):
         """The data and traces of the partner's solve as balanced: where its matrix is
@@ -115,7 +116,8 @@ class ForceBalance:
             self._alpha = {key: np.array(data[key][0]) for key in self.sides}
             self._response = {key: np.atleast_2d(probed[key]) - np.atleast_2d(traces[key])
                               for key in self.sides}
-            offset = self._offset(data, self.force_of(data, traces))
+            self._per_offset = self._gradient_dot(data, self.direction)
+            offset = self._offset(self.force_of(data, traces))
             data = self._shifted(data, offset)
             traces = dict(traces)
             for key in self.sides:
