@@ -241,15 +241,63 @@ class Units:
     def names(self, revolution=False):
         """The unit of each kind of output, as a person writes it; ``revolution``: of
         an axisymmetric scene, whose forces are total forces and whose shells' moments
-        are per unit length of a circle."""
+        are per unit length of a circle. Forces in newtons where the units are SI ones
+        (MPa and mm: N/mm per unit width, N in total; si_force_name), else the product
+        (E b, psi in)."""
         length, stress = self.length, self.stress
-        force = "E b" if self.dimensionless else f"{stress} {length}"
-        moment = "E b^2" if self.dimensionless else f"{stress} {length}^2"
+        per_length = si_force_name(stress, length, 1)
+        total = si_force_name(stress, length, 2)
+        force = force_name(stress, length)
+        if self.dimensionless:
+            moment = "E b^2"
+        else:
+            moment = f"{total} {length}" if total else f"{stress} {length}^2"
+        line_force = (per_length if per_length
+                      else f"{force.replace(' (per unit width)', '')} (per unit length)")
         return {LENGTH: length, STRESS: stress,
-                FORCE: moment if revolution else f"{force} (per unit width)",
-                MOMENT: f"{moment} (per unit {'length' if revolution else 'width'})",
-                LINE_FORCE: f"{force} (per unit length)", NUMBER: "1", SECONDS: "s",
+                FORCE: (total or moment) if revolution else force,
+                MOMENT: (f"{moment}/{length}" if total
+                         else f"{moment} (per unit {'length' if revolution else 'width'})"),
+                LINE_FORCE: line_force, NUMBER: "1", SECONDS: "s",
                 DEGREES: "degree", INDEX: "row of NAME.csv"}
+
+
+# SI prefixes by their power of ten, and the SI units of stress and length a scene names
+_PREFIXES = {"T": 12, "G": 9, "M": 6, "k": 3, "": 0, "c": -2, "m": -3, "u": -6, "µ": -6,
+             "n": -9}
+_FORCE_PREFIXES = {0: "", 3: "k", 6: "M", 9: "G", -3: "m", -6: "u", -9: "n"}
+
+
+def _si_power(name, unit):
+    """The power of ten of ``name`` as a prefixed ``unit`` ("MPa": 6), or None."""
+    prefix = name[:-len(unit)] if name.endswith(unit) else None
+    return _PREFIXES.get(prefix) if prefix is not None else None
+
+
+def si_force_name(stress, length, power):
+    """stress x length^power named in newtons, as engineers write it: a force per unit
+    width (power 1: MPa mm = N/mm, GPa mm = kN/mm, Pa m = N/m) or a force (power 2: MPa
+    mm^2 = N); None where the units are not prefixed pascals and metres or the product
+    has no prefix of its own (the product's name is then given)."""
+    stress_power, length_power = _si_power(stress, "Pa"), _si_power(length, "m")
+    if stress_power is None or length_power is None:
+        return None
+    prefix = _FORCE_PREFIXES.get(stress_power + 2 * length_power)
+    if prefix is None:
+        return None
+    return f"{prefix}N/{length}" if power == 1 else f"{prefix}N"
+
+
+def force_name(stress, length):
+    """The name of a force per unit width in these units of stress and length: N/mm
+    (si_force_name), else the product, "(per unit width)" after it (E b, psi in)."""
+    return si_force_name(stress, length, 1) or f"{stress} {length} (per unit width)"
+
+
+def force_label(name):
+    """A force unit's name (Units.names) as a label says it: "N/mm", "N", "MPa mm per
+    unit width"."""
+    return name.replace(" (per unit width)", " per unit width")
 
 
 def units_from_table(table, path=None):

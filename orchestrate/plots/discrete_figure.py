@@ -27,6 +27,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
+from orchestrate.model.units import force_label, force_name  # noqa: E402
+
 LINESTYLE = {"shell": "-", "stretch_shell": "-.", "elastic": "--"}
 COLOUR = {"shell": "C0", "stretch_shell": "C2", "elastic": "C1"}
 MODEL_NAME = {"shell": "shell", "stretch_shell": "shell with stretch",
@@ -52,8 +54,8 @@ def run_units(summary):
     """(length, stress, force) unit names of a run; a run older than units: b and E."""
     units = summary.get("units", {})
     length, stress = units.get("length", "b"), units.get("stress", "E")
-    force = units.get("force", "E b" if (length, stress) == ("b", "E") else f"{stress} {length}")
-    return length, stress, force.replace(" (per unit width)", "")
+    force = units.get("force", force_name(stress, length))
+    return length, stress, force_label(force)
 
 
 def _scene_but_models(summary):
@@ -156,7 +158,7 @@ def draw(runs):
     indenter = f"Cylinder R = {radius:g} {length}" if radius is not None else "A flat indenter"
     patches = len(scene["coatings"])
     plot.suptitle(f"{indenter} over {patches} coating patch{'es' if patches > 1 else ''}, "
-                  f"force {force:.4g} {force_unit} per unit width\n(dotted red: singular "
+                  f"force {force:.4g} {force_unit}\n(dotted red: singular "
                   "bonded ends)", fontsize=10)
     plot.tight_layout()
     return plot, pd.concat(data, ignore_index=True)

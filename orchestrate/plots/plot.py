@@ -27,6 +27,7 @@ import pandas as pd  # noqa: E402
 from orchestrate.run.answers import near_patch_ends  # noqa: E402
 from orchestrate.errors import ParameterError  # noqa: E402
 from orchestrate.model.scene import scene_from_dict  # noqa: E402
+from orchestrate.model.units import force_label, force_name  # noqa: E402
 
 # A contact zone's margin on each side: the bond's stresses reach beyond the contact by
 # about the contact's half-width (the base's elastic field) and, under a stiff coating
@@ -79,10 +80,8 @@ def run_units(summary):
     run older than units: b and E."""
     units = summary.get("units", {})
     length, stress = units.get("length", "b"), units.get("stress", "E")
-    force = units.get("force", "E b" if (length, stress) == ("b", "E") else f"{stress} {length}")
-    per = "" if force.endswith("^2") else " per unit width"     # an axisymmetric run's: total
-    return {"length": length, "stress": stress,
-            "force": force.replace(" (per unit width)", "") + per}
+    force = units.get("force", force_name(stress, length))
+    return {"length": length, "stress": stress, "force": force_label(force)}
 
 
 def face_extent(scene):

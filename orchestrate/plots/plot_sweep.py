@@ -26,7 +26,8 @@ from orchestrate.errors import ParameterError  # noqa: E402
 from orchestrate.sweeps.run_names import UNSAFE  # noqa: E402
 from orchestrate.model.scene_file import SHORTHANDS  # noqa: E402
 from orchestrate.sweeps import OUTCOME_COLUMNS  # noqa: E402
-from orchestrate.model.units import DEGREES, FORCE, KINDS, LENGTH, SCENE_KINDS, SECONDS, STRESS  # noqa: E402
+from orchestrate.model.units import (DEGREES, FORCE, KINDS, LENGTH, SCENE_KINDS,  # noqa: E402
+                                     SECONDS, STRESS, force_label, force_name)
 
 NOT_PARAMETERS = {"id", *OUTCOME_COLUMNS}  # a run's name and outcome: never split by
 LEGEND_INSIDE = 8                          # more lines than this: the legend goes aside
@@ -151,9 +152,8 @@ def column_unit(table, name):
     if kind == FORCE:
         length = _one_unit(table, "units.length", "b")
         stress = _one_unit(table, "units.stress", "E")
-        force = _one_unit(table, "units.force", "E b" if (length, stress) == ("b", "E")
-                          else f"{stress} {length}")
-        return force.replace(" (per unit width)", "") + " per unit width"
+        force = _one_unit(table, "units.force", force_name(stress, length))
+        return force_label(force)
     return {SECONDS: "s", DEGREES: "degree"}.get(kind)
 
 

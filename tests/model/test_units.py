@@ -19,7 +19,7 @@ import orchestrate
 from orchestrate.errors import ParameterError
 from orchestrate.model.scene import Base, Coating, Indenter, Load
 from orchestrate.model.scene_file import load_scene
-from orchestrate.model.units import SCENE_KINDS
+from orchestrate.model.units import FORCE as FORCE_KIND, SCENE_KINDS, Units, si_force_name, unit_registry
 
 B, E = 2.5, 70000.0     # b in mm, E in MPa
 LENGTH, STRESS, FORCE, MOMENT = B, E, E * B, E * B * B
@@ -169,7 +169,7 @@ def test_the_summarys_answers_forces_and_positions_are_the_twins_scaled(twins):
 def test_every_output_says_its_units(twins):
     mm, twin = (json.loads((run / "summary.json").read_text()) for run in twins)
     assert (mm["units"]["length"], mm["units"]["stress"]) == ("mm", "MPa")
-    assert mm["units"]["force"].startswith("MPa mm")
+    assert mm["units"]["force"] == "N/mm"            # MPa mm, named as engineers do
     assert (mm["units"]["b"], mm["units"]["E"]) == ("2.5 mm", "70000.0 MPa")
     assert (twin["units"]["length"], twin["units"]["stress"]) == ("b", "E")
     columns = mm["units"]["columns"]
@@ -177,7 +177,7 @@ def test_every_output_says_its_units(twins):
     assert set(columns) == written
     assert columns["contact.csv"] == {"x1": "mm", "x2": "mm", "s": "mm", "sigma_n": "MPa",
                                       "sigma_t": "MPa"}
-    assert columns["coating1_fields.csv"]["M11"].startswith("MPa mm^2")
+    assert columns["coating1_fields.csv"]["M11"] == "N mm/mm"
     assert columns["history.csv"]["seconds"] == "s"
 
 
@@ -232,3 +232,26 @@ def test_a_run_in_b_and_E_starts_from_its_twin_in_mm(twins, tmp_path):
     assert started["iterations"] <= 2 < summary["iterations"]
     assert started["peak_contact_stress"] == pytest.approx(summary["peak_contact_stress"],
                                                            rel=1e-6)
+
+
+@pytest.mark.parametrize("stress, length, per_width, total", [
+    ("MPa", "mm", "N/mm", "N"),              # 1 MPa x 1 mm = 1 N/mm; x 1 mm^2 = 1 N
+    ("GPa", "mm", "kN/mm", "kN"),
+    ("Pa", "m", "N/m", "N"),
+    ("MPa", "m", "MN/m", "MN"),
+    ("GPa", "um", "mN/um", "mN"),            # 1e9 Pa x 1e-12 m^2 = 1e-3 N
+    ("kPa", "cm", None, None),               # 0.1 N: no prefix of its own
+    ("psi", "in", None, None),               # not pascals and metres
+])
+def test_forces_are_named_in_newtons_where_the_units_are_si(stress, length, per_width,
+                                                            total):
+    assert si_force_name(stress, length, 1) == per_width
+    assert si_force_name(stress, length, 2) == total
+    names = Units(length=length, stress=stress, b=1.0).names()
+    assert names[FORCE_KIND] == (per_width or f"{stress} {length} (per unit width)")
+    if total is not None:       # the check by pint: the names are those units
+        registry = unit_registry()
+        product = registry.Quantity(1.0, f"{stress} * {length}")
+        assert product.to(per_width).magnitude == pytest.approx(1.0)
+        assert (product * registry.Quantity(1.0, length)).to(total).magnitude \
+            == pytest.approx(1.0)

@@ -151,7 +151,7 @@ def test_axes_and_title_in_the_runs_units(runs):
     assert "(mm)" in axes.get_xlabel() and axes.get_ylabel().startswith("stress (MPa")
     title = axes.get_title()
     for part in ("cylinder R = 50 mm", "h = 0.3 mm", "E = 420000 MPa", "2D model",
-                 "force 1000 MPa mm per unit width", "E = 210000 MPa"):
+                 "force 1000 N/mm", "E = 210000 MPa"):
         assert part in title
     _, _, axes = _drawn(runs / "paper")
     assert "(b)" in axes.get_xlabel() and axes.get_ylabel().startswith("stress (E")

@@ -186,7 +186,7 @@ def test_plot_sweep_labels_its_axes_in_b_and_E_for_a_dimensionless_sweep(sweep,
     ("coating[1].thickness", "bond-coating1.shear",
      ("coating[1].thickness (mm)", "bond-coating1.shear (MPa)")),
     ("E2", "bond-coating1.shear_x1", ("E2 (MPa)", "bond-coating1.shear_x1 (mm)")),
-    ("h2", "total_force", ("h2 (mm)", "total_force (MPa mm per unit width)")),
+    ("h2", "total_force", ("h2 (mm)", "total_force (N/mm)")),
     ("h2", "iterations", ("h2 (mm)", "iterations")),            # a count: no unit
     ("model", "coating1.von_mises", ("model", "coating1.von_mises (MPa)")),
 ])
