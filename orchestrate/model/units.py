@@ -81,7 +81,7 @@ KINDS = {
         "traction_change", "traction_component_change", "error_estimate", "active_points",
         "active_set_changed", "active_set_update", "direct", "iterations", "final_relative_change",
         "active_set_changes", "tolerance", "patch", "estimated_error", "fallback_estimated_error",
-        "h2_over_a", "contact", "bond", "shear", "shell", "stretch_shell", "elastic",
+        "h2_over_a", "stretch_shell_elements_thick", "contact", "bond", "shear", "shell", "stretch_shell", "elastic",
         "mesh_dependent", "converged", "end_zone", "elements_across_contact")},
     **{name: SECONDS for name in ("seconds", "wait", "wall_time_s", "setup_time_s",
                                   "loop_time_s", "outputs_time_s", "time_per_iteration_s")},

@@ -62,39 +62,41 @@ from orchestrate.model.estimate import (ANSWERS, contact_half_width, estimated_e
                                         predicted_half_width, worst_error)
 from orchestrate.model.scene import MESH_LEVEL_LIMIT, check_compatible
 from orchestrate.model.units import dimensionless
-from orchestrate.run.validity import Say, mesh_warnings, scene_warnings
+from orchestrate.run.validity import Say, elements_thick, mesh_warnings, scene_warnings
 
 AUTO = "auto"
 FIDELITY = ("shell", "stretch_shell", "elastic")   # least to most faithful
 COST_TIE = 1.1
 
 
-def estimated_unknowns(scene, settings):
-    return sum(estimated_dofs(discretize(scene, settings)).values())
-
-
-def choose_models(scene, settings, a=None):
+def choose_models(scene, settings, a=None, edge=None):
     """(the scene with every "auto" patch's model chosen, the choice's report or None);
-    ``a``: the scene's a priori contact half-width, if known."""
+    ``a``: the scene's a priori contact half-width, if known; ``edge``: the half-width
+    whose edges a patch's elements are counted at (the predicted one; ``a`` if None)."""
     auto = [n for n, c in enumerate(scene.coatings) if c.model == AUTO]
     if not auto:
         return scene, None
     tolerance, answers = settings.model_tolerance, settings.model_answers
     a = contact_half_width(scene) if a is None else a
+    edge = a if edge is None else edge
     # while a patch is decided, the other undecided ones are shells (the cheapest)
     models = [("shell" if c.model == AUTO else c.model) for c in scene.coatings]
     patches = []
     for n in auto:
         coating = scene.coatings[n]
-        errors = estimated_errors(scene, coating, a)
-        unknowns, refused = {}, {}
+        unknowns, refused, thick = {}, {}, None
         for model in FIDELITY:
             trial = list(models)
             trial[n] = model
             try:
-                unknowns[model] = round(estimated_unknowns(scene.with_models(trial), settings))
+                problem = discretize(scene.with_models(trial), settings)
             except ParameterError as error:     # its mesh too fine for the machine (a
                 refused[model] = error          # nanometre-thin 2D coating, uniform faces)
+                continue
+            unknowns[model] = round(sum(estimated_dofs(problem).values()))
+            if model == "stretch_shell":        # its bond shear may follow its mesh
+                thick = elements_thick(problem, edge).get(n + 1)
+        errors = estimated_errors(scene, coating, a, thick)
         passing = [m for m in FIDELITY if m in unknowns
                    and worst_error(errors[m], answers) <= tolerance]
         if not passing:                 # elastic always passes the tolerance: refused too
@@ -106,6 +108,7 @@ def choose_models(scene, settings, a=None):
                         "estimated_error": worst_error(errors[chosen], answers),
                         "not_estimated": not_estimated(scene, coating, a),
                         "h2_over_a": coating.thickness / a if a else None,
+                        "stretch_shell_elements_thick": thick,
                         "estimated_errors": errors, "estimated_unknowns": unknowns,
                         "refused": {model: str(error) for model, error in refused.items()}})
     report = {"tolerance": tolerance, "answers_judged": ANSWERS[answers],
@@ -135,7 +138,7 @@ def _decided_models(scene, settings):
     predicted = predicted_half_width(solved, a)     # with a compliant coating's spread
     settings = settings.sized_to(predicted, contact_reach(solved))  # the mesh sized to
                                                                       # the contact
-    solved, model_choice = choose_models(solved, settings, a)
+    solved, model_choice = choose_models(solved, settings, a, predicted)
     return solved, model_choice, scales, settings, a, predicted
 
 
@@ -216,7 +219,8 @@ def _prepared(scene, settings):
     chosen = scene.with_models([c.model for c in solved.coatings])
     say = Say(scales, scene.units)
     return Plan(chosen, problem, model_choice, scales,
-                tuple(scene_warnings(chosen, scene, settings, say, a * scales.length)
+                tuple(scene_warnings(chosen, scene, settings, say, a * scales.length,
+                                     elements_thick(problem, predicted))
                       + mesh_warnings(problem, say, predicted)),
                 strategy, coarse if strategy.two_levels else None)
 

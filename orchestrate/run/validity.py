@@ -34,6 +34,9 @@ a column of a sweep's table; ``--strict`` makes them an exit status of their own
     bond_shear_model       a shell patch (chosen by the user or by auto) whose bond
                            shear, an answer the tolerance does not cover under
                            model_answers = "normal", is estimated off by more than it
+    bond_shear_mesh        ... a stretch shell's, not estimated: the patch is thinner
+                           than STRETCH_SHEAR_LEAST_ELEMENTS of its interface elements
+                           at the predicted contact's edge, where its shear follows them
     thick_coating          a coating thicker than a share of its base's depth: not a thin
                            coating on a body
     singular_contact_peak  the largest contact pressure at a patch's end: a step under
@@ -49,7 +52,8 @@ Values are computed in the solver's b and E and said in the scene's units.
 
 import numpy as np
 
-from orchestrate.model.estimate import (ANSWER_NAMES, ANSWERS, END_MARGIN, estimated_errors,
+from orchestrate.model.estimate import (ANSWER_NAMES, ANSWERS, END_MARGIN,
+                                        STRETCH_SHEAR_LEAST_ELEMENTS, estimated_errors,
                                         not_estimated, worst_error)
 from orchestrate.model.scene import SHELL_MODELS
 
@@ -164,6 +168,13 @@ def edge_elements(problem, a):
     return found
 
 
+def elements_thick(problem, a):
+    """{patch number: its thickness in interface elements} at an edge of the contact
+    predicted with half-width ``a`` (edge_elements), for every patch under one."""
+    return {n: problem.scene.coatings[n - 1].thickness / element
+            for n, _, element in edge_elements(problem, a)}
+
+
 def elements_across(x1, symmetric, zones):
     """(interface elements across, their length) of every contact zone [start, end] (a
     zone from a half model's axis: across its mirror image too); ``x1`` the contact
@@ -185,11 +196,13 @@ def _element_length(x1, start, end):
     return 2.0 * float(np.median(np.diff(near)))
 
 
-def scene_warnings(scene, given, settings, say, a):
+def scene_warnings(scene, given, settings, say, a, thick=None):
     """The warnings known before any work, from the ``scene`` (its models chosen) and the
     scene as ``given`` (which patches the user modelled, not "auto"), both in the scene's
-    units (the estimate's quantities are ratios: any consistent units do), and its a
-    priori contact half-width ``a`` in those units."""
+    units (the estimate's quantities are ratios: any consistent units do), its a
+    priori contact half-width ``a`` in those units and ``thick``, each patch's thickness
+    in interface elements at the predicted contact's edge (elements_thick)."""
+    thick = thick or {}
     warnings = []
     if (scene.partial_slip and scene.load.tangential and scene.load.path == "at_once"
             and _unlike_bodies(scene)):
@@ -211,17 +224,10 @@ def scene_warnings(scene, given, settings, say, a):
                 "body; the base's clamping acts through it", share, COATING_SHARE))
         if coating.model not in SHELL_MODELS:
             continue
-        errors = estimated_errors(scene, coating, a)[coating.model]
-        if errors is not None and "shear" not in ANSWERS[settings.model_answers] \
-                and errors["shear"] > settings.model_tolerance:
-            warnings.append(_warning(
-                "bond_shear_model", f"coating[{number}] is a {coating.model}: its bond "
-                f"shear is estimated {100 * errors['shear']:.3g} % off the 2D coating's "
-                f"(tolerance {100 * settings.model_tolerance:g} %, which model_answers = "
-                f"\"{settings.model_answers}\" applies to the pressure and the bond's "
-                "normal stress only); model_answers = \"all\" or model = \"elastic\" "
-                "for a bond shear within it", errors["shear"],
-                settings.model_tolerance))
+        errors = estimated_errors(scene, coating, a, thick.get(number))[coating.model]
+        if errors is not None and "shear" not in ANSWERS[settings.model_answers]:
+            warnings += _bond_shear_warnings(number, coating, errors["shear"],
+                                             thick.get(number), settings)
         if asked.model not in SHELL_MODELS:
             continue
         reason = not_estimated(scene, coating, a)
@@ -235,6 +241,10 @@ def scene_warnings(scene, given, settings, say, a):
         error = worst_error(errors, settings.model_answers)
         if error > settings.model_tolerance:
             each = ", ".join(f"{ANSWER_NAMES[name]} {100 * errors[name]:.3g} %"
+                             if errors[name] is not None else
+                             f"{ANSWER_NAMES[name]} not estimated on this mesh (the coating "
+                             f"{thick[number]:.2g} of its elements thick at the contact's "
+                             "edge)"
                              for name in ANSWERS[settings.model_answers])
             warnings.append(_warning(
                 "model_error", f"coating[{number}] is modelled as a {coating.model}, whose "
@@ -244,6 +254,30 @@ def scene_warnings(scene, given, settings, say, a):
                 "within it", error,
                 settings.model_tolerance))
     return warnings
+
+
+def _bond_shear_warnings(number, coating, error, thick, settings):
+    """bond_shear_model: a shell patch's bond shear estimated off by more than the
+    tolerance (``error``); bond_shear_mesh: not estimated on elements that set it
+    (``thick``: the coating's thickness in them at the predicted contact's edge)."""
+    if error is None:
+        return [_warning(
+            "bond_shear_mesh", f"coating[{number}] is a {coating.model}: its bond shear is "
+            f"not estimated, the coating being {thick:.2g} of its interface elements thick "
+            f"at the predicted contact's edge (limit {STRETCH_SHEAR_LEAST_ELEMENTS:g}): "
+            "there its shear overshoots by as much as the elements make it, not as its form "
+            "says; model = \"elastic\" on elements of at most a quarter of its thickness "
+            "there (element_size, contact_elements) for a bond shear", thick,
+            STRETCH_SHEAR_LEAST_ELEMENTS)]
+    if error > settings.model_tolerance:
+        return [_warning(
+            "bond_shear_model", f"coating[{number}] is a {coating.model}: its bond shear is "
+            f"estimated {100 * error:.3g} % off the 2D coating's (tolerance "
+            f"{100 * settings.model_tolerance:g} %, which model_answers = "
+            f"\"{settings.model_answers}\" applies to the pressure and the bond's normal "
+            "stress only); model_answers = \"all\" or model = \"elastic\" for a bond "
+            "shear within it", error, settings.model_tolerance)]
+    return []
 
 
 class Say:

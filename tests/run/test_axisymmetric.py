@@ -23,6 +23,7 @@ import pytest
 
 import orchestrate
 from orchestrate.errors import ParameterError
+from orchestrate.model.estimate import STRETCH_SHEAR_LEAST_ELEMENTS
 from orchestrate.model.scene import Base, Coating, Indenter, Load, Scene, Settings
 from orchestrate.model.scene_file import SCENES_DIR, apply_overrides, load_scene, scene_and_settings
 
@@ -216,15 +217,18 @@ def test_a_shell_on_an_axisymmetric_scene_is_a_shell_of_revolution(model, tmp_pa
     assert {"radial_top_compression", "hoop_top_compression", "mean_shear"} <= set(coating)
 
 
-@pytest.mark.parametrize("answers, thickness, chosen", [
-    ("all", 1 / 128, "elastic"),          # the shells' bond shear: 1.4 % and more
-    ("normal", 1 / 128, "stretch_shell"),  # the 2D coating: four times the unknowns
-    ("normal", 1 / 16, "elastic"),        # as cheap as a shell
+@pytest.mark.parametrize("answers, thickness, chosen, mesh_bound", [
+    # the shell's bond shear 1.4 % and more; the stretch shell's not estimated on
+    # elements of b/16, eight times longer than the coating is thick
+    ("all", 1 / 128, "elastic", True),
+    ("normal", 1 / 128, "stretch_shell", True),  # the 2D coating: four times the unknowns
+    ("normal", 1 / 16, "elastic", False),        # as cheap as a shell
 ])
-def test_auto_estimates_the_shells_of_revolution(answers, thickness, chosen):
+def test_auto_estimates_the_shells_of_revolution(answers, thickness, chosen, mesh_bound):
     """auto on an axisymmetric scene takes the revolution constants (estimate.REVOLUTION)
     and chooses as on a plane one: the cheapest model within the tolerance in the
-    answers judged; the choice is the run's."""
+    answers judged; the choice is the run's. The stretch shell's bond shear is not
+    estimated where its mesh sets it (estimate.STRETCH_SHEAR_LEAST_ELEMENTS)."""
     scene = Scene(indenter=Indenter(radius=RADIUS, width=4.0, height=4.0, rigid=True),
                   base=Base(width=12.0, height=12.0),
                   coatings=(Coating(start=0.0, end=3.0, thickness=thickness, E=4.0,
@@ -235,7 +239,12 @@ def test_auto_estimates_the_shells_of_revolution(answers, thickness, chosen):
     patch = plan.model_choice["patches"][0]
     assert patch["not_estimated"] is None and patch["estimated_error"] <= 0.01
     errors = patch["estimated_errors"]
-    assert errors["stretch_shell"]["shear"] > 0.01 > errors["stretch_shell"]["contact"]
+    assert errors["stretch_shell"]["contact"] < 0.01
+    assert (patch["stretch_shell_elements_thick"] < STRETCH_SHEAR_LEAST_ELEMENTS) == mesh_bound
+    if mesh_bound:
+        assert errors["stretch_shell"]["shear"] is None
+    else:
+        assert errors["stretch_shell"]["shear"] > 0.01
     shell = plan.problem.subdomains["coating1"].plan
     assert getattr(shell, "revolution", False) == (chosen != "elastic")   # of revolution
 

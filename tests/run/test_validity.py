@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from orchestrate.errors import RunFailed
+from orchestrate.model import estimate, scene_from_dict
 from orchestrate.model.scene_file import scene_and_settings
 from orchestrate.run.solve import solve
 from orchestrate.run.validity import (BOND_RESOLUTION, COATING_SHARE, DESCENT_LIMIT,
@@ -39,6 +40,8 @@ SCENES = {
     "a shell of Poisson ratio 0.45": (None, {"nu2": 0.45, "model": "shell"}, {}),
     "auto's stretch shell on a thin coating": (None, {"h2": 1 / 64, "E2": 0.2,
                                                       "model": "auto"}, {}),
+    "a stretch shell on a thin coating, its elements a coating thick": (
+        None, {"h2": 1 / 64, "E2": 0.2, "model": "stretch_shell"}, {"element_size": 1 / 64}),
     "a coating 31 % of its base": (None, {"h2": 2.5, "model": "elastic"}, {}),
     "a patch ending under the contact": (CYLINDER, {"coating.end": 0.3, "load.force": 0.01},
                                          {}),
@@ -112,15 +115,25 @@ def test_a_shell_chosen_where_its_estimate_is_far_off_is_said(summaries):
 
 def test_a_shell_whose_bond_shear_is_off_says_so_though_auto_chose_it(summaries):
     """Under the default answers (the pressure and the bond's normal stress) auto takes
-    the stretch shell on a thin coating; its bond shear, unjudged, is said."""
+    the stretch shell on a thin coating; its bond shear, unjudged, is said: estimated
+    where its elements resolve the coating enough, not estimated where they set it."""
+    summary = summaries["a stretch shell on a thin coating, its elements a coating thick"]
+    found = _warnings(summary)
+    assert set(found) == {"bond_shear_model", "coarse_bond"}   # b/64 on elements of b/64
+    shear = found["bond_shear_model"]
+    assert shear["value"] > shear["limit"] == summary["settings"]["model_tolerance"]
+    coating = scene_from_dict(summary["scene"]).coatings[0]
+    assert shear["value"] == pytest.approx(estimate.estimated_errors(
+        scene_from_dict(summary["scene"]), coating)["stretch_shell"]["shear"])
     summary = summaries["auto's stretch shell on a thin coating"]
     assert summary["scene"]["coatings"][0]["model"] == "stretch_shell"
     found = _warnings(summary)
-    assert set(found) == {"bond_shear_model", "coarse_bond"}   # b/64 on elements of b/16
-    shear = found["bond_shear_model"]
-    assert shear["value"] > shear["limit"] == summary["settings"]["model_tolerance"]
-    assert shear["value"] == pytest.approx(
-        summary["model_choice"]["patches"][0]["estimated_errors"]["stretch_shell"]["shear"])
+    assert set(found) == {"bond_shear_mesh", "coarse_bond"}    # b/64 on elements of b/16
+    patch = summary["model_choice"]["patches"][0]
+    assert patch["estimated_errors"]["stretch_shell"]["shear"] is None
+    assert found["bond_shear_mesh"]["value"] == pytest.approx(
+        patch["stretch_shell_elements_thick"]) == pytest.approx(0.25)
+    assert found["bond_shear_mesh"]["limit"] == estimate.STRETCH_SHEAR_LEAST_ELEMENTS
 
 
 def test_a_shell_outside_the_estimates_range_is_said(summaries):
@@ -151,7 +164,8 @@ def test_every_warning_passed_its_limit(summaries):
         for warning in summary["warnings"]:
             if warning["value"] is None:
                 continue
-            if warning["code"] in ("coarse_contact", "coarse_mesh", "coarse_bond"):  # too few
+            if warning["code"] in ("coarse_contact", "coarse_mesh", "coarse_bond",
+                                   "bond_shear_mesh"):                          # too few
                 assert warning["value"] < warning["limit"], (name, warning)
             elif warning["code"] == "contact_at_edge":
                 assert warning["value"] == warning["limit"], (name, warning)
