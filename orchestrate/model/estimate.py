@@ -1,8 +1,9 @@
 """The a priori estimates of a scene: the contact's half-width (Hertz: a cylinder in
 plane strain, a sphere's contact radius in an axisymmetric scene) and each coating
-model's error, before any mesh; what ``model = "auto"`` chooses by (orchestrate/run/plan.py)
-and what the warnings model_error, model_uncalibrated and bond_shear_model say
-(orchestrate/run/validity.py).
+model's error, before any mesh (but for whether the stretch shell's bond shear is set by
+its mesh, told by the plan); what ``model = "auto"`` chooses by (orchestrate/run/plan.py)
+and what the warnings model_error, model_uncalibrated, bond_shear_model and
+bond_shear_mesh say (orchestrate/run/validity.py).
 
 The estimate is a priori: from quantities of the scene, before any mesh, calibrated on
 measured errors (studies/adequacy.py, ``--fit``) and checked on scenes it never saw
