@@ -107,15 +107,16 @@ def _shell_constants(x, c, q, error):
 
 
 def _saturating_constants(ratio, x, share, error):
-    """S, s, t, r of the share S ratio^s x^t exp(r (share - 1/2)) whose share / (1 +
-    share) is |error|: least squares on log share over the rows above JUDGED (the share
-    of an error below 1)."""
+    """S, s, t, r, u of the share S ratio^s x^t exp((r + u ln x) (share - 1/2)) whose
+    share / (1 + share) is |error|: least squares on log share over the rows above
+    JUDGED (the share of an error below 1)."""
     judged = (np.abs(error) > JUDGED) & (np.abs(error) < 1.0)
     target = np.abs(error[judged]) / (1.0 - np.abs(error[judged]))
+    stiffening = share[judged] - 0.5
     columns = np.array([np.ones(judged.sum()), np.log(ratio[judged]), np.log(x[judged]),
-                        share[judged] - 0.5]).T
-    log_S, s, t, r = np.linalg.lstsq(columns, np.log(target), rcond=None)[0]
-    return float(np.exp(log_S)), float(s), float(t), float(r)
+                        stiffening, stiffening * np.log(x[judged])]).T
+    log_S, s, t, r, u = np.linalg.lstsq(columns, np.log(target), rcond=None)[0]
+    return float(np.exp(log_S)), float(s), float(t), float(r), float(u)
 
 
 def fit(table):

@@ -75,7 +75,12 @@ def plane_development_scenes():
              # rigid one (added when the gallery's near-rigid scenes fell outside)
              (0.125, 1.0, {"E1": 1000.0}), (0.0625, 0.5, {"E1": 10.0}),
              (0.25, 4.0, {"indenter.rigid": True}), (0.0625, 2.0, {"indenter.rigid": True}),
-             (0.125, 2.0, {"E3": 3.0}), (0.125, 0.5, {"E1": 0.3})]
+             (0.125, 2.0, {"E3": 3.0}), (0.125, 0.5, {"E1": 0.3}),
+             # thin coatings under a rigid indenter: how its stiffness acts as h2/a falls
+             # (added when the held-out balls' thin films had their shell's bond shear
+             # estimated 0.2-0.36 times its error)
+             (1 / 32, 0.3, {"indenter.rigid": True}), (1 / 32, 2.0, {"indenter.rigid": True}),
+             (1 / 128, 1.0, {"indenter.rigid": True})]
     scenes = _paper(paper)
     shallow = [(1 / 16, 0.2), (1 / 8, 1.0), (1 / 4, 5.0), (1 / 32, 0.5)]
     scenes += [(f"paper stamp/4 h2={h2:g} E2={E2:g}",
@@ -167,6 +172,9 @@ def revolution_calibration_scenes():
         (1 / 4, 0.2, {"load.force": 0.02}), (1 / 8, 5.0, {"load.force": 0.12}),
         (1 / 8, 1.0, {"base.E": 2.0}), (1 / 16, 4.0, {"indenter.rigid": True}),
         (1 / 4, 0.5, {"indenter.rigid": True}),
+        # thin coatings under a rigid sphere (added with the plane ones above)
+        (1 / 32, 0.3, {"indenter.rigid": True}), (1 / 32, 2.0, {"indenter.rigid": True}),
+        (1 / 128, 1.0, {"indenter.rigid": True}),
         # held out at first: the sphere met the ring's step, which the estimate then
         # learnt to see (estimate.not_estimated)
         (0.1, 0.5, {"coating.start": 2.0, "coating.end": 4.0})])
