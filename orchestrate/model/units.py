@@ -81,7 +81,8 @@ KINDS = {
         "traction_change", "traction_component_change", "error_estimate", "active_points",
         "active_set_changed", "active_set_update", "direct", "iterations", "final_relative_change",
         "active_set_changes", "tolerance", "patch", "estimated_error", "fallback_estimated_error",
-        "h2_over_a", "stretch_shell_elements_thick", "contact", "bond", "shear", "shell", "stretch_shell", "elastic",
+        "h2_over_a", "stretch_shell_elements_thick", "contact", "bond", "shear", "shell",
+        "stretch_shell", "elastic",
         "mesh_dependent", "converged", "end_zone", "elements_across_contact")},
     **{name: SECONDS for name in ("seconds", "wait", "wall_time_s", "setup_time_s",
                                   "loop_time_s", "outputs_time_s", "time_per_iteration_s")},
@@ -245,20 +246,15 @@ class Units:
         (MPa and mm: N/mm per unit width, N in total; si_force_name), else the product
         (E b, psi in)."""
         length, stress = self.length, self.stress
-        per_length = si_force_name(stress, length, 1)
-        total = si_force_name(stress, length, 2)
-        force = force_name(stress, length)
-        if self.dimensionless:
-            moment = "E b^2"
-        else:
-            moment = f"{total} {length}" if total else f"{stress} {length}^2"
-        line_force = (per_length if per_length
-                      else f"{force.replace(' (per unit width)', '')} (per unit length)")
+        total = si_force_name(stress, length, 2)        # None in b and E, or psi and in
+        moment = f"{total} {length}" if total else f"{stress} {length}^2"
         return {LENGTH: length, STRESS: stress,
-                FORCE: (total or moment) if revolution else force,
+                FORCE: (total or moment) if revolution else force_name(stress, length),
                 MOMENT: (f"{moment}/{length}" if total
                          else f"{moment} (per unit {'length' if revolution else 'width'})"),
-                LINE_FORCE: line_force, NUMBER: "1", SECONDS: "s",
+                LINE_FORCE: (si_force_name(stress, length, 1)
+                             or f"{stress} {length} (per unit length)"),
+                NUMBER: "1", SECONDS: "s",
                 DEGREES: "degree", INDEX: "row of NAME.csv"}
 
 
