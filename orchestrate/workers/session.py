@@ -8,8 +8,9 @@ that worker as it is, factorisation and all, and its fields are put at the scene
 (Subdomains.outputs shifts the nodes it sends). Workers the next scene does not use are
 stopped when it ends.
 
-A worker that serves its second scene is asked once for its Robin-to-trace map
-(orchestrate/workers/robin_map.py), which the loop then evaluates instead of a solve.
+A kept worker is asked once for its Robin-to-trace map (orchestrate/workers/robin_map.py),
+which the loop then evaluates instead of a solve, when its solves in the scenes it served
+have cost what the map costs (orchestrate/workers/subdomains.py).
 
 A worker compiles its forms (freefem/*.idp) when it starts. So that an edited form
 takes effect in the next scene, a kept worker serves a scene only while the forms' digest
@@ -92,6 +93,7 @@ class Entry:
         self.origin = origin
         self.forms = forms         # the digest of the forms when it started
         self.scenes = 0
+        self.solves = 0            # the real Robin solves it answered, over every scene
         self.robin_map = None
         # it dies with this thread (children.die_with_parent: the kernel's parent-death
         # signal follows the thread that started a process, not its process)
@@ -107,9 +109,10 @@ class Session:
     a thread does not take the workers another thread started (they die with it).
     ``with Session() as session:`` stops its workers at the end of the block; a Session
     never closed stops them when it is garbage-collected, or when the interpreter exits.
-    ``map_kept``: whether a worker serving its second scene gives its Robin map (orchestrate/
-    workers/subdomains.py), which pays over a sweep; a load path's own session of two or
-    three steps does not ask it (a coated base's map cost 8 s where its step took 3 s)."""
+    ``map_kept``: whether a kept worker gives its Robin map once its solves paid for it
+    (orchestrate/workers/subdomains.py), which pays over a sweep; a load path's own
+    session of two or three steps does not ask it (a coated base's map cost 8 s where
+    its step took 3 s)."""
 
     def __init__(self, map_kept=True):
         self.map_kept = map_kept

@@ -161,6 +161,14 @@ def tangential_arguments(load):
 # while every new worker has at most Settings.auto_direct_unknowns interface unknowns,
 # weighted by its dofs over the largest worker's (Subdomains._maps_pay; `python -m
 # studies.bench_direct` times both ways).
+# A kept worker's map is probed once its real solves, over every scene it served, have
+# cost what probing would: KEPT_MAP_SOLVES_PER_UNKNOWN of them per interface unknown
+# (buying once the rent paid reaches the price: at most twice the cost of the better
+# choice made knowing how many scenes follow). Measured on the gallery at mesh level 1, a
+# column of a map cost 0.12-0.19 of a Robin iteration of the loop, and a sweep's maps
+# paid after 1.6-5.4 scenes; probed at its second scene, the thick ceramic's coating
+# (531 unknowns) took 5.7 s to save 1.1 s a scene.
+KEPT_MAP_SOLVES_PER_UNKNOWN = 0.15
 # On a mesh fine enough for two levels (mesh level 2 and finer) "auto" and "two-level"
 # probe no map, not even a kept worker's: iterated with a coarse correction a scene takes
 # 20-30 Robin iterations, while the maps of the indenter and the base cost 10 s at mesh
@@ -174,8 +182,9 @@ _FILE_ARGUMENTS = {"-mesh", "-nodes", "-sides", "-problem"}
 class Subdomains:
     """Every subdomain of a run as a persistent FreeFEM worker, taken from ``session``.
 
-    For the active-set loop (problem.settings), a worker that serves its second scene
-    gives its Robin-to-trace map (robin_map.py), which stands in for its solves while the
+    For the active-set loop (problem.settings), a kept worker whose solves have paid for
+    it (KEPT_MAP_SOLVES_PER_UNKNOWN) gives its Robin-to-trace map (robin_map.py), which
+    stands in for its solves while the
     Robin coefficients are the map's (that loop's never change). ``inner_solve``: with
     "direct", every new worker gives its map too, and with every map known the loop
     solves each contact set's fixed point directly (robin_maps); "auto" does so where
@@ -215,7 +224,13 @@ class Subdomains:
         # auto may solve directly unless the run's strategy planned to iterate
         self.direct = (self.use_maps and inner_solve in ("auto", "direct")
                        and not iterate)
-        self.map_new = self.direct and (inner_solve == "direct" or self._maps_pay())
+        # "direct" maps every worker; auto every new one where the maps pay, and a kept
+        # one once its solves have paid for it (_to_map)
+        self.map_all = self.direct and inner_solve == "direct"
+        self.map_new = self.direct and (self.map_all or self._maps_pay())
+        kept = self.kept
+        self.kept_paid = not kept or (self.session.map_kept
+                                      and all(self._paid(name) for name in kept))
 
     def _stamp(self, worker):
         return any(self.problem.subdomains[name].stamp for name in self.parts[worker])
@@ -229,7 +244,7 @@ class Subdomains:
         """From now on every worker gives its map, and the loop solves each contact set
         directly (what "direct" does): an iterated inner solve that failed falls back
         to it (orchestrate/run/solve.py)."""
-        self.use_maps = self.direct = self.map_new = True
+        self.use_maps = self.direct = self.map_new = self.map_all = True
 
     def _maps_pay(self):
         """Whether probing the new workers' maps costs less than the Robin iterations a
@@ -313,6 +328,7 @@ class Subdomains:
                                  and entry.robin_map.serves(requests[name]))
             if not self.mapped[name]:
                 entry.worker.send(Command.SOLVE, requests[name])
+                entry.solves += 1
         self.last_requests.update(requests)
         traces, seconds, descent = {}, {}, None
         for name in names:
@@ -335,7 +351,7 @@ class Subdomains:
         if not self.solves_directly:
             return None
         requests = self._requests(data)
-        self._ask_maps(requests)
+        self._ask_maps(requests, again=True)
         maps = {name: entry.robin_map for name, entry in self.entries.items()}
         return maps if all(maps[name].serves(requests[name]) for name in maps) else None
 
@@ -343,7 +359,7 @@ class Subdomains:
         """Ask for the maps ``robin_maps(data)`` returns, and return at once: the workers
         probe while the caller works."""
         if self.solves_directly:
-            self._send_map_requests(self._requests(data))
+            self._send_map_requests(self._requests(data), again=True)
 
     def _requests(self, data, names=None):
         return {name: RobinRequest.of(self.sides[name], data)
@@ -353,27 +369,49 @@ class Subdomains:
     def solves_directly(self):
         """Whether every worker gives its map, so the loop solves each contact set
         directly."""
-        return self.direct and all(self._to_map(entry) and not self._shifts(name)
+        return self.direct and all(self._to_map(name) and not self._shifts(name)
                                    for name, entry in self.entries.items())
 
-    def _to_map(self, entry):
-        return self.map_new or (entry.scenes >= 2 and self.session.map_kept)
+    def _paid(self, name):
+        """Whether the worker has a map, or its solves so far have cost what probing one
+        would (KEPT_MAP_SOLVES_PER_UNKNOWN)."""
+        entry = self.entries[name]
+        return (entry.robin_map is not None
+                or entry.solves >= KEPT_MAP_SOLVES_PER_UNKNOWN * self.unknowns[name])
 
-    def _ask_maps(self, requests):
-        """The maps of the workers that serve their second scene (every worker's, with
-        ``map_new``), all asked at once."""
+    def _to_map(self, name):
+        """Whether the worker has its map or is to give it. A run that may solve each
+        contact set directly maps every worker or none, at the direct solve's
+        coefficients, which are not the iterated loop's: every one with ``map_all``, else
+        where the new ones' maps pay and every kept one had paid for its own when the run
+        began (``kept_paid``); a map at other coefficients is probed again (robin_maps).
+        A run that iterates maps a kept worker once it has paid, at the loop's
+        coefficients: its map then stands in for its solves."""
+        if self.map_all:
+            return True
+        if self.direct:
+            return self.map_new and self.kept_paid
+        entry = self.entries[name]
+        return entry.robin_map is not None or (entry.scenes >= 2 and self.session.map_kept
+                                               and self._paid(name))
+
+    def _ask_maps(self, requests, again=False):
+        """The maps of the workers _to_map names, all asked at once (``again``: also
+        where a worker's map is at other coefficients)."""
         if not self.use_maps:
             return
-        self._send_map_requests(requests)
+        self._send_map_requests(requests, again)
         for name in list(self._pending):
             entry = self.entries[name]
             entry.robin_map = receive_map(entry.worker, self._pending.pop(name),
                                           self.components[name])
 
-    def _send_map_requests(self, requests):
+    def _send_map_requests(self, requests, again=False):
         for name in requests:
             entry = self.entries[name]
-            if (entry.robin_map is None and name not in self._pending and self._to_map(entry)
+            wanted = entry.robin_map is None or (again
+                                                 and not entry.robin_map.serves(requests[name]))
+            if (wanted and name not in self._pending and self._to_map(name)
                     and not self._shifts(name)):
                 send_map_request(entry.worker, requests[name])
                 self._pending[name] = requests[name]
