@@ -574,6 +574,19 @@ def test_auto_leaves_the_coarse_level_out_under_contrast():
     assert asked.inner_solve.planned == TWO_LEVEL          # asked, it is kept
 
 
+def test_auto_takes_the_bonds_inside_only_down_to_the_tolerance_it_reaches_there():
+    """With the bond's penalty in the base's matrix, the near-rigid cylinder's loop at
+    eps_u = 1e-8 stagnated, its estimate stuck near 1.7e-8, while exchanged it reached
+    9e-9 (measured): auto takes the bonds inside down to 1e-7, asked down to 1e-8."""
+    scene, _ = scene_and_settings(SCENES_DIR / "gallery" / "near_rigid_cylinder.toml")
+    inside = {eps_u: bool(prepare(scene, Settings(eps_u=eps_u)).strategy.bonds_inside)
+              for eps_u in (1e-7, 5e-8)}
+    assert inside == {1e-7: True, 5e-8: False}
+    asked = {eps_u: bool(prepare(scene, Settings(eps_u=eps_u, bonds="inside"))
+                         .strategy.bonds_inside) for eps_u in (1e-8, 5e-9)}
+    assert asked == {1e-8: True, 5e-9: False}
+
+
 def test_auto_leaves_the_coarse_level_out_where_its_maps_would_not_pay():
     """At mesh level 2 auto takes two levels only where probing the coarse level's maps
     would pay by the measure it applies to a direct solve (auto_direct_unknowns): the

@@ -40,7 +40,7 @@ PIN_EPS_U = 1e-8
 @pytest.fixture(scope="module")
 def default_run(tmp_path_factory):
     return solve(paper_scene(), Settings(theta=PIN_THETA, inner_solve="iterate",
-                                         eps_u=PIN_EPS_U),
+                                         bonds="inside", eps_u=PIN_EPS_U),
                  tmp_path_factory.mktemp("default"))
 
 
