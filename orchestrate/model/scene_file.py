@@ -24,6 +24,7 @@ parameters of METHOD.md, kept as shorthands (``h2``, ``E2``, ``model``, ...; the
 SHORTHANDS), so that the paper's flags and sweep files keep working.
 """
 
+import difflib
 from dataclasses import fields, is_dataclass
 import math
 from pathlib import Path
@@ -241,7 +242,11 @@ def _set(scene, key, value):
         return _copy(scene, coatings=tuple(coatings))
     table, _, name = key.partition(".")
     if table not in _TABLES or not name:
-        raise ParameterError(f"unknown scene key {key!r}", key)
+        close = difflib.get_close_matches(table, [*_TABLES, *_TOP_LEVEL_VALUES], n=1)
+        hint = f"did you mean {close[0]!r}? " if close else ""
+        raise ParameterError(f"unknown scene key {key!r} ({hint}keys: "
+                             f"{', '.join(_TOP_LEVEL_VALUES)}, or TABLE.FIELD with TABLE "
+                             f"one of {', '.join(_TABLES)}; one patch: coating[N].FIELD)", key)
     _field_exists(_TABLES[table], name, key)
     value = in_units({name: value}, f"{table}.", scene.units, scene.axisymmetric)[name]
     if table == "coating":
@@ -259,9 +264,12 @@ def _set(scene, key, value):
 
 
 def _field_exists(cls, name, key):
-    if name not in {f.name for f in fields(cls)}:
-        raise ParameterError(f"unknown scene key {key!r} (allowed: "
-                             f"{', '.join(f.name for f in fields(cls))})", key)
+    names = [f.name for f in fields(cls)]
+    if name not in names:
+        close = difflib.get_close_matches(name, names, n=1)
+        hint = f"did you mean {close[0]!r}? " if close else ""
+        raise ParameterError(f"unknown scene key {key!r} ({hint}allowed: "
+                             f"{', '.join(names)})", key)
 
 
 def _copy(part, **changes):

@@ -274,3 +274,19 @@ def test_a_load_path_s_steps_take_units_and_the_load_s_own_values(tmp_path):
     from orchestrate.model.units import FORCE
     assert scaled.load.earlier_steps[1][1] == pytest.approx(0.2 / scales.of(FORCE))
     assert apply_overrides(fretting, {"load.force": 2 * force}).load.path == fretting.load.path
+
+
+@pytest.mark.parametrize("key, words", [
+    ("coatings.thickness", ["'coatings.thickness'", "did you mean 'coating'?",
+                            "TABLE.FIELD", "coating[N].FIELD"]),
+    ("frction", ["did you mean 'friction'?"]),
+    ("coating.thicknes", ["did you mean 'thickness'?", "allowed: start, end"]),
+    ("coating[1].modulus", ["'coating[1].modulus'", "allowed:"]),
+])
+def test_a_mistyped_override_names_the_keys_there_are(key, words):
+    from orchestrate.model.scene_file import apply_overrides
+    scene, _ = load_scene(SCENES_DIR / "gallery" / "tin_on_steel.toml")
+    with pytest.raises(ParameterError) as refused:
+        apply_overrides(scene, {key: 1.0})
+    for word in words:
+        assert word in str(refused.value), (word, str(refused.value))
