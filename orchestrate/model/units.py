@@ -284,6 +284,21 @@ def si_force_name(stress, length, power):
     return f"{prefix}N/{length}" if power == 1 else f"{prefix}N"
 
 
+def modulus_text(value, stress):
+    """A modulus in ``stress`` units as engineers write it: where they are prefixed pascals,
+    in the larger prefix that leaves it below 1000 ("210 GPa" for 210000 MPa; "3 MPa"
+    stays); else "{value:g} {stress}"."""
+    power = _si_power(stress, "Pa")
+    if power is None or not math.isfinite(value) or abs(value) < 1000:
+        return f"{value:g} {stress}"
+    shift = 3 * math.floor(math.log10(abs(value)) / 3)
+    while shift > 0 and power + shift not in _FORCE_PREFIXES:
+        shift -= 3
+    if shift <= 0:
+        return f"{value:g} {stress}"
+    return f"{value / 10.0 ** shift:g} {_FORCE_PREFIXES[power + shift]}Pa"
+
+
 def force_name(stress, length):
     """The name of a force per unit width in these units of stress and length: N/mm
     (si_force_name), else the product, "(per unit width)" after it (E b, psi in)."""

@@ -27,7 +27,7 @@ import pandas as pd  # noqa: E402
 from orchestrate.run.answers import near_patch_ends  # noqa: E402
 from orchestrate.errors import ParameterError  # noqa: E402
 from orchestrate.model.scene import scene_from_dict  # noqa: E402
-from orchestrate.model.units import force_label, force_name  # noqa: E402
+from orchestrate.model.units import force_label, force_name, modulus_text  # noqa: E402
 
 # A contact zone's margin on each side: the bond's stresses reach beyond the contact by
 # about the contact's half-width (the base's elastic field) and, under a stiff coating
@@ -180,9 +180,10 @@ def scene_title(summary, scene, units):
                  f"R = {indenter.radius:g} {length}")
     on = ("cylinder" if scene.axisymmetric else "block" if base.shape == "block"
           else f"roller R = {base.radius:g} {length}")
-    moduli = (f"rigid indenter, E = {base.E:g} {stress}" if indenter.rigid
-              else f"E = {base.E:g} {stress}" if indenter.E == base.E
-              else f"E = {indenter.E:g} / {base.E:g} {stress}")
+    base_E = modulus_text(base.E, stress)
+    moduli = (f"rigid indenter, E = {base_E}" if indenter.rigid
+              else f"E = {base_E}" if indenter.E == base.E
+              else f"E = {modulus_text(indenter.E, stress)} / {base_E}")
     if load.force is not None:
         loading = f"force {load.force:g} {units['force']}"
     else:
@@ -196,7 +197,7 @@ def scene_title(summary, scene, units):
         kinds[kind] = kinds.get(kind, 0) + 1
     patches = "; ".join(
         f"{f'{count} patches' if count > 1 else 'coating'} h = {thickness:g} {length}, "
-        f"E = {E:g} {stress} ({MODEL_NAMES.get(model, model)})"
+        f"E = {modulus_text(E, stress)} ({MODEL_NAMES.get(model, model)})"
         for (thickness, E, model), count in kinds.items()) or "uncoated"
     view = ("; axisymmetric" if scene.axisymmetric else "; half model" if scene.symmetric
             else "")

@@ -19,7 +19,8 @@ import orchestrate
 from orchestrate.errors import ParameterError
 from orchestrate.model.scene import Base, Coating, Indenter, Load
 from orchestrate.model.scene_file import load_scene
-from orchestrate.model.units import FORCE as FORCE_KIND, SCENE_KINDS, Units, si_force_name, unit_registry
+from orchestrate.model.units import (FORCE as FORCE_KIND, SCENE_KINDS, Units, modulus_text,
+                                     si_force_name, unit_registry)
 
 B, E = 2.5, 70000.0     # b in mm, E in MPa
 LENGTH, STRESS, FORCE, MOMENT = B, E, E * B, E * B * B
@@ -255,3 +256,22 @@ def test_forces_are_named_in_newtons_where_the_units_are_si(stress, length, per_
         assert product.to(per_width).magnitude == pytest.approx(1.0)
         assert (product * registry.Quantity(1.0, length)).to(total).magnitude \
             == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("value, stress, text", [
+    (210000.0, "MPa", "210 GPa"),
+    (2100.0, "MPa", "2.1 GPa"),
+    (999.0, "MPa", "999 MPa"),               # below a thousand: as it is
+    (2.1e11, "Pa", "210 GPa"),
+    (210000.0, "GPa", "210000 GPa"),         # no prefix above G
+    (3e7, "psi", "3e+07 psi"),               # not pascals
+    (1.0, "E", "1 E"),
+])
+def test_a_modulus_is_written_in_the_prefix_that_keeps_it_below_a_thousand(value, stress,
+                                                                            text):
+    assert modulus_text(value, stress) == text
+    if stress.endswith("Pa"):      # the check by pint: the same modulus
+        number, unit = text.split()
+        registry = unit_registry()
+        assert registry.Quantity(float(number), unit).to(stress).magnitude \
+            == pytest.approx(value)
