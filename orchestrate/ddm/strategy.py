@@ -294,15 +294,15 @@ def _bonds_inside(settings, problem, inner_solve, half_width):
     thinner than the a priori contact half-width (a thicker one is a body of its own under the
     contact, whose exchange with the base converges as fast: measured on the gallery,
     one worker was slower there), within the tolerance it reaches
-    (INSIDE_TIGHTEST_EPS_U, under "auto" AUTO_INSIDE_TIGHTEST_EPS_U); "auto" there too: with no bond to exchange, the contact's
-    far split (robin_parameters.py) keeps the final contact set's iterations about level
-    with the mesh, where a thin coating's bond, exchanged, would not (at a contact split
-    of 4 and between bodies alike, one worker had taken fewer iterations but more time,
-    its requests and replies carrying both sides of every bond). Never with a fresh
-    process per solve: each factorises anew, its last
-    digits differ from process to process, and with the penalty in one matrix that noise
-    (measured: relative changes stuck near 4e-9 under a near-rigid indenter) kept the
-    stopping test above eps_u."""
+    (INSIDE_TIGHTEST_EPS_U, under "auto" AUTO_INSIDE_TIGHTEST_EPS_U); "auto" there too:
+    with no bond to exchange, the contact's far split (robin_parameters.py) keeps the
+    final contact set's iterations about level with the mesh, where a thin coating's
+    bond, exchanged, would not (at a contact split of 4 and between bodies alike, one
+    worker had taken fewer iterations but more time, its requests and replies carrying
+    both sides of every bond). Never with a fresh process per solve: each factorises
+    anew, its last digits differ from process to process, and with the penalty in one
+    matrix that noise (measured: relative changes stuck near 4e-9 under a near-rigid
+    indenter) kept the stopping test above eps_u."""
     if (settings.method == PAPER or settings.bonds == "exchanged" or not problem.bonds
             or inner_solve.planned not in (ITERATE, DIRECT_OR_ITERATE, TWO_LEVEL)
             or settings.eps_u < (INSIDE_TIGHTEST_EPS_U if settings.bonds == "inside"

@@ -261,7 +261,7 @@ class Units:
 # SI prefixes by their power of ten, and the SI units of stress and length a scene names
 _PREFIXES = {"T": 12, "G": 9, "M": 6, "k": 3, "": 0, "c": -2, "m": -3, "u": -6, "µ": -6,
              "n": -9}
-_FORCE_PREFIXES = {0: "", 3: "k", 6: "M", 9: "G", -3: "m", -6: "u", -9: "n"}
+_PREFIX_OF_POWER = {0: "", 3: "k", 6: "M", 9: "G", -3: "m", -6: "u", -9: "n"}
 
 
 def _si_power(name, unit):
@@ -278,7 +278,7 @@ def si_force_name(stress, length, power):
     stress_power, length_power = _si_power(stress, "Pa"), _si_power(length, "m")
     if stress_power is None or length_power is None:
         return None
-    prefix = _FORCE_PREFIXES.get(stress_power + 2 * length_power)
+    prefix = _PREFIX_OF_POWER.get(stress_power + 2 * length_power)
     if prefix is None:
         return None
     return f"{prefix}N/{length}" if power == 1 else f"{prefix}N"
@@ -292,11 +292,11 @@ def modulus_text(value, stress):
     if power is None or not math.isfinite(value) or abs(value) < 1000:
         return f"{value:g} {stress}"
     shift = 3 * math.floor(math.log10(abs(value)) / 3)
-    while shift > 0 and power + shift not in _FORCE_PREFIXES:
+    while shift > 0 and power + shift not in _PREFIX_OF_POWER:
         shift -= 3
     if shift <= 0:
         return f"{value:g} {stress}"
-    return f"{value / 10.0 ** shift:g} {_FORCE_PREFIXES[power + shift]}Pa"
+    return f"{value / 10.0 ** shift:g} {_PREFIX_OF_POWER[power + shift]}Pa"
 
 
 def force_name(stress, length):

@@ -184,11 +184,10 @@ class Subdomains:
 
     For the active-set loop (problem.settings), a kept worker whose solves have paid for
     it (KEPT_MAP_SOLVES_PER_UNKNOWN) gives its Robin-to-trace map (robin_map.py), which
-    stands in for its solves while the
-    Robin coefficients are the map's (that loop's never change). ``inner_solve``: with
-    "direct", every new worker gives its map too, and with every map known the loop
-    solves each contact set's fixed point directly (robin_maps); "auto" does so where
-    the maps pay (_maps_pay); "iterate" never, nor "auto" where the run's strategy
+    stands in for its solves while the Robin coefficients are the map's (that loop's
+    never change). ``inner_solve``: with "direct", every new worker gives its map too,
+    and with every map known the loop solves each contact set's fixed point directly
+    (robin_maps); "auto" does so where the maps pay (_maps_pay); "iterate" never, nor "auto" where the run's strategy
     planned to iterate (``iterate``). On a mesh fine enough for two levels, "auto" and
     "two-level" use no map at all, nor does a fresh process per solve. ``workers``: the
     run's workers and their subdomains (Strategy.workers), by default each subdomain its
