@@ -38,7 +38,6 @@ import time
 from types import SimpleNamespace
 
 import numpy as np
-import pandas as pd
 
 from orchestrate.ddm.contact import (contact_half_width, contact_zones, limits_on_axis,
                                      stick_zones)
@@ -132,6 +131,8 @@ def _step_before(scene, settings, progress, start_from, session):
                 f"the load path's step {number} (load.path: force {scene.load.force:g}, "
                 f"{scene.load.tangential_kind.replace('_', ' ')} {scene.load.tangential:g}): "
                 f"{failed.summary['reason']}"))) from None
+    import pandas as pd     # here: a run without a load path needs no pandas
+
     tables = {name: pd.DataFrame(files.tables.get(f"{name}.csv", {}))
               for name in ("contact", "interface", "traces")}
     return SimpleNamespace(summary=files.summary, **tables)

@@ -19,7 +19,6 @@ import math
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 from orchestrate.errors import ParameterError
 from orchestrate.model.scene import scene_from_dict
@@ -108,6 +107,8 @@ def start_state(start_from, layout):
         scene_from_dict(summary["scene"])
     except (ParameterError, KeyError, TypeError, ValueError) as error:
         refuse(f"its summary's scene is not readable ({error})")
+    import pandas as pd     # here: a run that starts from none needs no pandas
+
     tables = {}
     for name, columns in _COLUMNS.items():
         try:

@@ -154,3 +154,21 @@ def test_a_process_killed_in_a_monolithic_solve_leaves_no_solver_and_its_folder_
     assert len(list(tmp.glob(WorkFolder.MONOLITHIC_PREFIX + "*"))) == 1
     remove_dead_work_folders(tmp)
     assert list(tmp.iterdir()) == []
+
+
+def test_the_command_line_loads_no_pandas_until_a_command_needs_it():
+    """The package's names are imported when first asked for (orchestrate/__init__.py,
+    orchestrate/run/__init__.py): the command line and a run without a load path or a
+    start need no pandas (with it, `--help` had taken over a second), while the API's
+    names are there when asked."""
+    probe = ("import sys, orchestrate, orchestrate.cli, orchestrate.run.solve\n"
+             "print('pandas' in sys.modules)\n"
+             "from orchestrate import Result, solve\n"
+             "print(solve is orchestrate.run.api.solve, Result.__name__)\n"
+             "print(sorted(set(orchestrate.__all__) - set(dir(orchestrate))))\n")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          cwd=PROJECT_DIR, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split("\n")[:3] == ["False", "True Result", "[]"]
+    with pytest.raises(AttributeError, match="no attribute 'nothing'"):
+        orchestrate.nothing
