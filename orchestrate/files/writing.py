@@ -12,6 +12,7 @@ from pathlib import Path
 
 import meshio
 import numpy as np
+import orjson
 
 from orchestrate.errors import system_failure
 
@@ -76,17 +77,36 @@ def vtu_bytes(mesh, name="a VTU file"):
 
 def csv_bytes(columns):
     """``{name: values}`` as CSV, columns in the given order, full precision (Python's
-    csv module's text: a number as its repr, None empty, lines ended by CRLF)."""
+    csv module's text: None empty, lines ended by CRLF; a number as its shortest text
+    that reads back exactly, an integer as an integer)."""
     names = list(columns)
     values = [np.asarray(columns[n]) for n in names]
-    if all(v.dtype.kind in "fiu" for v in values):     # numbers alone: joined directly,
-        text = [list(map(repr, v.tolist())) for v in values]   # as csv would, faster
-        return "\r\n".join([",".join(names), *map(",".join, zip(*text)), ""]).encode()
+    header = ",".join(names).encode() + b"\r\n"
+    if values and all(v.dtype.kind in "fiu" for v in values) and all(
+            np.isfinite(v).all() for v in values if v.dtype.kind == "f"):
+        return header + _numbers_csv(values)
     out = io.StringIO(newline="")
     writer = csv.writer(out)
     writer.writerow(names)
     writer.writerows(zip(*(v.tolist() for v in values)))
     return out.getvalue().encode()
+
+
+def _numbers_csv(values):
+    """Finite numbers' rows as CSV, rendered by orjson (ryu's shortest round-trip text,
+    in C: a tenth of the time of Python's repr, which a body's fields spent 0.1-0.25 s
+    in); columns of one kind as one array, whose JSON rows become the CSV lines."""
+    if len({v.dtype.kind == "f" for v in values}) == 1:
+        table = np.column_stack([v.astype(float if v.dtype.kind == "f" else np.int64)
+                                 for v in values])
+        if not len(table):
+            return b""
+        text = orjson.dumps(table, option=orjson.OPT_SERIALIZE_NUMPY)
+        return text[2:-2].replace(b"],[", b"\r\n") + b"\r\n"
+    texts = [orjson.dumps(v.astype(float if v.dtype.kind == "f" else np.int64),
+                          option=orjson.OPT_SERIALIZE_NUMPY)[1:-1].split(b",")
+             for v in values]
+    return b"".join(b",".join(row) + b"\r\n" for row in zip(*texts))
 
 
 def write_csv(path, columns):

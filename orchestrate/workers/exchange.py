@@ -2,9 +2,12 @@
 in freefem/exchange.idp, with the same fields in the same order
 (tests/workers/test_protocol.py sends every one through FreeFEM and back).
 
-Numbers travel as text in full precision: a number as it is, an array count-first (its
-length, then its values). A request is its command's number, then its record; a reply
-is its record, then the word "end" (worker.py).
+What the driver writes travels as text in full precision (a request, a sides file, a
+shell's numbers): a number as it is, an array count-first (its length, then its
+values). What a worker answers travels in binary (a reply: an integer as an int64, a
+number as a float64, an array count-first, the machine's byte order): the text of a
+body's fields cost more to print and parse than to compute. A request is its command's
+number, then its record; a reply is its record, then the word "end" (worker.py).
 
     Sides          a subdomain's sides file, read once at its start
     RobinRequest   Command.SOLVE and Command.MAP: alpha and g on every side
@@ -16,8 +19,9 @@ is its record, then the word "end" (worker.py).
                    shell's or a shell of revolution's)
     ShellNumbers   a shell's numbers: shell.edp's arguments, monolithic.edp's problem file
 
-Every record has ``encode()`` (its text) and ``decode(numbers, ...)`` (from ``Numbers``,
-with the sizes the text does not hold).
+Every record has ``encode()`` (its text, or a reply's bytes) and ``decode(numbers, ...)``
+(from ``Numbers``, or a reply's ``BinaryNumbers``, with the sizes the record does not
+hold).
 """
 
 from dataclasses import astuple, dataclass, fields
@@ -93,10 +97,96 @@ class Numbers:
         self.at += n
         return self.values[self.at - n:self.at]
 
+    def integers(self, size=None):
+        """The next count-first array of integers; ``size``: the length it must have."""
+        values = self.array(size)
+        if not np.all(values == np.round(values)):
+            raise RecordError(f"{self.what} with a fraction where integers are due")
+        return values.astype(np.int64)
+
     def end(self):
         """The record is read: nothing may follow."""
         if self.at != len(self.values):
             raise RecordError(f"{self.what} with {len(self.values) - self.at} unexpected values")
+
+
+REPLY_END = b"end"      # the word closing every reply
+
+
+def encode_binary(*values):
+    """Numbers and arrays as a reply's bytes (freefem/exchange.idp's binary streams):
+    integers and flags as int64, other numbers as float64, arrays count-first (an int64
+    count, then the values: int64 for an array of integers, else float64)."""
+    parts = []
+    for value in values:
+        if isinstance(value, (bool, int, np.integer)):
+            parts.append(np.int64(value).tobytes())
+        elif isinstance(value, (float, np.floating)):
+            parts.append(np.float64(value).tobytes())
+        else:
+            array = np.asarray(value).ravel()
+            kind = np.int64 if array.dtype.kind in "biu" else np.float64
+            parts += [np.int64(len(array)).tobytes(), array.astype(kind).tobytes()]
+    return b"".join(parts) + REPLY_END
+
+
+class BinaryNumbers:
+    """A reply's numbers as a worker writes them (binary), read field by field in order;
+    ``take(n)`` returns the reply's next n bytes, writable (a worker's FIFO as they
+    arrive: worker.py; bytes at hand: ``of_bytes``)."""
+
+    def __init__(self, take, what="a reply", unread=lambda: 0):
+        self.take = take
+        self.what = what
+        self.unread = unread     # bytes known to follow the reply: none on a FIFO (the
+                                 # next reply comes only after the next request)
+
+    @classmethod
+    def of_bytes(cls, data, what="a reply"):
+        """From a whole reply's bytes: ``end`` then also checks that nothing follows."""
+        data, at = memoryview(data), 0
+
+        def take(n):
+            nonlocal at
+            if at + n > len(data):
+                raise RecordError(f"{what} that ends early ({len(data)} bytes)")
+            at += n
+            return bytearray(data[at - n:at])
+
+        return cls(take, what, lambda: len(data) - at)
+
+    def _values(self, n, dtype):
+        return np.frombuffer(self.take(8 * n), dtype=dtype)
+
+    def number(self):
+        return float(self._values(1, np.float64)[0])
+
+    def integer(self):
+        value = int(self._values(1, np.int64)[0])
+        if value < 0:
+            raise RecordError(f"{self.what} with {value} where a count or flag is due")
+        return value
+
+    def _count(self, size):
+        n = self.integer()
+        if size is not None and n != size:
+            raise RecordError(f"{self.what} with an array of {n} values where {size} are due")
+        return n
+
+    def array(self, size=None):
+        """The next count-first array of numbers; ``size``: the length it must have."""
+        return self._values(self._count(size), np.float64)
+
+    def integers(self, size=None):
+        """The next count-first array of integers; ``size``: the length it must have."""
+        return self._values(self._count(size), np.int64)
+
+    def end(self):
+        """The reply is read: its closing word must follow, and nothing after it."""
+        closing = bytes(self.take(len(REPLY_END)))
+        if closing != REPLY_END or self.unread():
+            raise RecordError(f"{self.what} that does not end where its record does "
+                              f"({closing!r}, {self.unread()} bytes after)")
 
 
 # ---- Sides ------------------------------------------------------------------------------
@@ -208,8 +298,8 @@ class TraceReply:
     shift: float = 0.0
 
     def encode(self):
-        return encode(*(row for trace in self.traces for row in trace),
-                      self.seconds, self.back_seconds, self.descent, self.shift)
+        return encode_binary(*(row for trace in self.traces for row in trace),
+                             self.seconds, self.back_seconds, self.descent, self.shift)
 
     @classmethod
     def decode(cls, numbers, shape):
@@ -244,7 +334,7 @@ class MapReply:
     def encode(self):
         responses = [np.append(self.constant, self.descent0)]
         responses += [np.append(column, d) for column, d in zip(self.matrix.T, self.descent_row)]
-        return encode(*responses, self.seconds, self.back_seconds)
+        return encode_binary(*responses, self.seconds, self.back_seconds)
 
     @classmethod
     def decode(cls, numbers, unknowns):
@@ -301,17 +391,17 @@ class BodyOutput:
         labels = list(self.reactions)
         r1, r2 = (np.array([self.reactions[label][k] for label in labels], dtype=float)
                   for k in (0, 1))
-        return encode(len(self.columns[BODY_COLUMNS[0]]), len(self.cells), len(labels),
-                      *(self.columns[name] for name in BODY_COLUMNS),
-                      np.asarray(self.cells, dtype=np.int64), np.array(labels, dtype=np.int64),
-                      r1, r2)
+        return encode_binary(len(self.columns[BODY_COLUMNS[0]]), len(self.cells), len(labels),
+                             *(self.columns[name] for name in BODY_COLUMNS),
+                             np.asarray(self.cells, dtype=np.int64),
+                             np.array(labels, dtype=np.int64), r1, r2)
 
     @classmethod
     def decode(cls, numbers):
         rows, cells, supports = numbers.integer(), numbers.integer(), numbers.integer()
         columns = {name: numbers.array(rows) for name in BODY_COLUMNS}
-        nodes = numbers.array(CELL_NODES * cells).astype(np.int64).reshape(cells, CELL_NODES)
-        labels = numbers.array(supports).astype(int)
+        nodes = numbers.integers(CELL_NODES * cells).reshape(cells, CELL_NODES)
+        labels = numbers.integers(supports)
         r1, r2 = numbers.array(supports), numbers.array(supports)
         return cls(columns, nodes, {int(label): (float(a), float(b))
                                     for label, a, b in zip(labels, r1, r2)})
@@ -326,7 +416,7 @@ class ShellOutput:
     columns: dict             # name -> (rows,), in the record's order
 
     def encode(self):
-        return encode(len(next(iter(self.columns.values()))), *self.columns.values())
+        return encode_binary(len(next(iter(self.columns.values()))), *self.columns.values())
 
     @classmethod
     def decode(cls, numbers, names=SHELL_COLUMNS):

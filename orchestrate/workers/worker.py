@@ -1,7 +1,7 @@
 """Persistent FreeFEM workers that answer requests through FIFOs.
 
 A worker script (freefem/body.edp, freefem/shell.edp) assembles and factorises once,
-replies "ready", then loops: read a request, solve, reply; requests and replies are the
+replies that it is ready, then loops: read a request, solve, reply; requests and replies are the
 records of orchestrate/workers/exchange.py. The driver keeps both FIFOs
 open read-write for the worker's whole life, so that the worker's opens never block
 and a reply can be awaited with a timeout while checking that the worker is alive. A
@@ -20,7 +20,7 @@ import time
 
 from orchestrate.workers import freefem
 from orchestrate.workers.children import die_with_parent
-from orchestrate.workers.exchange import Command, Numbers, RecordError
+from orchestrate.workers.exchange import BinaryNumbers, Command, RecordError
 from orchestrate.errors import SystemFailure
 
 # Workers run side by side, one per core. FreeFEM links OpenMP, whose idle threads spin:
@@ -72,6 +72,7 @@ class Worker:
         self.process = None
         self._request_fd = self._reply_fd = None
         self._replies_owed = 0      # requests sent whose replies are not read
+        self._arrived = bytearray()  # reply bytes read from the FIFO, not yet taken
         command = freefem.command(script, [*arguments, "-request", self.request_path,
                                            "-reply", self.reply_path])
         try:
@@ -94,10 +95,13 @@ class Worker:
     # -- messages ---------------------------------------------------------------------
     def wait_ready(self):
         """Wait for the worker's set-up (assembly, factorisation); return its dof count."""
-        tokens = self._read_reply().decode().split()
-        if len(tokens) != 2 or tokens[0] != "ready":
-            raise WorkerError(f"worker {self.name} did not start properly: {tokens[:5]}")
-        return int(tokens[1])
+        numbers = BinaryNumbers(self._take, "a ready reply")
+        try:
+            unknowns = numbers.integer()
+            numbers.end()
+        except RecordError as error:
+            raise WorkerError(f"worker {self.name} did not start properly: {error}") from None
+        return unknowns
 
     def send(self, command, record=None):
         """Write one request: the command's number, then its record (exchange.py)."""
@@ -108,8 +112,8 @@ class Worker:
     def receive(self, decode, *sizes):
         """Read one reply and return its record, ``decode(numbers, *sizes)`` (a record's
         decode, exchange.py); WorkerError if it is not that record, whole."""
+        numbers = BinaryNumbers(self._take, "a reply")
         try:
-            numbers = Numbers.parse(self._read_reply(), "a reply")
             record = decode(numbers, *sizes)
             numbers.end()
         except RecordError as error:
@@ -191,17 +195,13 @@ class Worker:
                 self.kill()         # unresponsive: no grace to wait out when the run stops
                 raise WorkerError(f"worker {self.name} stopped reading its requests")
 
-    def _read_reply(self):
-        """Read until the reply's closing word "end"; return the bytes before it."""
+    def _take(self, n):
+        """The next ``n`` bytes of the worker's replies, waited for as they arrive."""
         start = time.monotonic()
-        chunks = []
-        while True:
+        while len(self._arrived) < n:
             readable, _, _ = select.select([self._reply_fd], [], [], _POLL_SECONDS)
             if readable:
-                chunks.append(os.read(self._reply_fd, 1 << 20))
-                tail = b"".join(chunks[-2:]).rstrip()
-                if tail.endswith(b"end"):
-                    break
+                self._arrived += os.read(self._reply_fd, max(n - len(self._arrived), 1 << 16))
             else:
                 self._check_alive()
                 if time.monotonic() - start > self.timeout:
@@ -210,8 +210,9 @@ class Worker:
                                "process?):\n" + freefem.log_tail(self.log_path))
                     self.kill()     # unresponsive: no grace to wait out when the run stops
                     raise WorkerError(message)
-        reply = b"".join(chunks).rstrip()
-        return reply[:-len(b"end")]
+        taken = self._arrived[:n]
+        del self._arrived[:n]
+        return taken
 
 
 def _reap(process):

@@ -2,7 +2,7 @@
 orchestrate/workers/exchange.py, encoded in Python, read by FreeFEM with
 freefem/exchange.idp's macros and written back with the same macros
 (tests/forms/freefem/exchange_round_trip.edp), decodes equal to what was sent, to the
-last bit. In between FreeFEM marks every field by its name (MARKS: a factor of its own,
+last bit: the driver's records as text, the replies in binary. In between FreeFEM marks every field by its name (MARKS: a factor of its own,
 a flag flipped, an integer shifted), so a field that one side reads into another's place
 fails the test, as do a count, a size or an order that differ. A shell's numbers also
 pass through shell.edp's way of reading them, its command-line flags."""
@@ -14,7 +14,8 @@ import pytest
 
 from orchestrate.workers.exchange import (BODY_COLUMNS, BODY_PLACE, BODY_TRACE_FIELDS,
                                           CELL_NODES, SHELL_COLUMNS, SHELL_PLACE, BodyOutput,
-                                          MapReply, Numbers, OutputRequest, RecordError,
+                                          BinaryNumbers, MapReply, Numbers, OutputRequest,
+                                          RecordError,
                                           RobinRequest, ShellNumbers, ShellOutput, SideArrays,
                                           Sides, TraceReply)
 
@@ -83,8 +84,12 @@ def _marked_side(side):
                       tuple(tuple(8 * c for c in component) for component in side.coefficients))
 
 
-def _decode(name, text):
-    numbers = Numbers.parse(text, name)
+REPLIES = ("trace_reply", "map_reply", "body_output", "shell_output")   # in binary
+
+
+def _decode(name, data):
+    numbers = (BinaryNumbers.of_bytes(data, name) if name in REPLIES
+               else Numbers.parse(data, name))
     decoders = {
         "body.sides": lambda n: Sides.decode(n, len(BODY_PLACE), len(BODY_TRACE_FIELDS)),
         "shell.sides": lambda n: Sides.decode(n, len(SHELL_PLACE), SHELL_FIELDS),
@@ -128,13 +133,15 @@ def records():
 
 def test_every_record_comes_back_from_freefem_equal(run_freefem, tmp_path, records):
     for name, record in records.items():
-        (tmp_path / name).write_text(record.encode())
+        data = record.encode()
+        assert isinstance(data, bytes) == (name in REPLIES), name
+        (tmp_path / name).write_bytes(data if name in REPLIES else data.encode())
     numbers = records["shell_numbers"]
     run_freefem("exchange_round_trip.edp", "-dir", tmp_path, "-fields", SHELL_FIELDS,
                 *numbers.arguments())
     for name, record in records.items():
-        _same(_decode(name, (tmp_path / f"{name}.back").read_text()), MARKS[name](record), name)
-    _same(_decode("shell_arguments", (tmp_path / "shell_arguments.back").read_text()),
+        _same(_decode(name, (tmp_path / f"{name}.back").read_bytes()), MARKS[name](record), name)
+    _same(_decode("shell_arguments", (tmp_path / "shell_arguments.back").read_bytes()),
           MARKS["shell_numbers"](numbers), "a shell's numbers from its arguments")
 
 
@@ -153,7 +160,22 @@ def _first_half(text):
                                           (lambda text: text + " 1.0", "unexpected values"),
                                           (lambda text: text.replace("\n", " x ", 1),
                                            "not numbers")])
-def test_a_record_cut_short_or_padded_is_refused(records, cut, message):
+def test_a_request_cut_short_or_padded_is_refused(records, cut, message):
+    with pytest.raises(RecordError, match=message):
+        _decode("robin_request", cut(records["robin_request"].encode()))
+
+
+def _recounted(data):
+    """The reply with one more row said than it holds."""
+    return (np.frombuffer(data[:8], np.int64) + 1).tobytes() + data[8:]
+
+
+@pytest.mark.parametrize("cut, message", [
+    (lambda data: data[:len(data) // 2], "ends early"),
+    (lambda data: data + np.float64(1.0).tobytes(), "does not end where its record does"),
+    (lambda data: data[:-3] + b"xyz", "does not end where its record does"),
+    (_recounted, "an array of 11 values where 12 are due")])
+def test_a_reply_cut_short_padded_or_miscounted_is_refused(records, cut, message):
     """A reply not whole (a worker killed while it wrote) is never taken for a record."""
     with pytest.raises(RecordError, match=message):
         _decode("body_output", cut(records["body_output"].encode()))
