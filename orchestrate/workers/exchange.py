@@ -2,12 +2,12 @@
 in freefem/exchange.idp, with the same fields in the same order
 (tests/workers/test_protocol.py sends every one through FreeFEM and back).
 
-What the driver writes travels as text in full precision (a request, a sides file, a
-shell's numbers): a number as it is, an array count-first (its length, then its
-values). What a worker answers travels in binary (a reply: an integer as an int64, a
-number as a float64, an array count-first, the machine's byte order): the text of a
-body's fields cost more to print and parse than to compute. A request is its command's
-number, then its record; a reply is its record, then the word "end" (worker.py).
+What travels through the FIFOs is binary (an integer as an int64, a number as a
+float64, an array count-first, the machine's byte order): the text of a body's fields
+cost more to print and parse than to compute. The files the driver writes for a worker
+(a sides file, a shell's numbers) are text in full precision: a number as it is, an
+array count-first (its length, then its values). A request is its command's number,
+then its record; a reply is its record, then the word "end" (worker.py).
 
     Sides          a subdomain's sides file, read once at its start
     RobinRequest   Command.SOLVE and Command.MAP: alpha and g on every side
@@ -19,9 +19,9 @@ number, then its record; a reply is its record, then the word "end" (worker.py).
                    shell's or a shell of revolution's)
     ShellNumbers   a shell's numbers: shell.edp's arguments, monolithic.edp's problem file
 
-Every record has ``encode()`` (its text, or a reply's bytes) and ``decode(numbers, ...)``
-(from ``Numbers``, or a reply's ``BinaryNumbers``, with the sizes the record does not
-hold).
+Every record has ``encode()`` (a file's text, or the bytes a FIFO carries) and
+``decode(numbers, ...)`` (from a file's ``Numbers`` or a FIFO's ``BinaryNumbers``, with
+the sizes the record does not hold).
 """
 
 from dataclasses import astuple, dataclass, fields
@@ -114,7 +114,8 @@ REPLY_END = b"end"      # the word closing every reply
 
 
 def encode_binary(*values):
-    """Numbers and arrays as a reply's bytes (freefem/exchange.idp's binary streams):
+    """Numbers and arrays as the bytes a FIFO carries (freefem/exchange.idp's binary
+    streams):
     integers and flags as int64, other numbers as float64, arrays count-first (an int64
     count, then the values: int64 for an array of integers, else float64)."""
     parts = []
@@ -127,23 +128,25 @@ def encode_binary(*values):
             array = np.asarray(value).ravel()
             kind = np.int64 if array.dtype.kind in "biu" else np.float64
             parts += [np.int64(len(array)).tobytes(), array.astype(kind).tobytes()]
-    return b"".join(parts) + REPLY_END
+    return b"".join(parts)
 
 
 class BinaryNumbers:
-    """A reply's numbers as a worker writes them (binary), read field by field in order;
-    ``take(n)`` returns the reply's next n bytes, writable (a worker's FIFO as they
-    arrive: worker.py; bytes at hand: ``of_bytes``)."""
+    """A record's numbers as a FIFO carries them (binary), read field by field in order;
+    ``take(n)`` returns the next n bytes, writable (a worker's replies as they arrive:
+    worker.py; bytes at hand: ``of_bytes``). ``closing``: the word after the record (a
+    reply's; a request has none)."""
 
-    def __init__(self, take, what="a reply", unread=lambda: 0):
+    def __init__(self, take, what="a reply", unread=lambda: 0, closing=REPLY_END):
         self.take = take
         self.what = what
-        self.unread = unread     # bytes known to follow the reply: none on a FIFO (the
+        self.unread = unread     # bytes known to follow the record: none on a FIFO (the
                                  # next reply comes only after the next request)
+        self.closing = closing
 
     @classmethod
-    def of_bytes(cls, data, what="a reply"):
-        """From a whole reply's bytes: ``end`` then also checks that nothing follows."""
+    def of_bytes(cls, data, what="a reply", closing=REPLY_END):
+        """From a whole record's bytes: ``end`` then also checks that nothing follows."""
         data, at = memoryview(data), 0
 
         def take(n):
@@ -153,7 +156,7 @@ class BinaryNumbers:
             at += n
             return bytearray(data[at - n:at])
 
-        return cls(take, what, lambda: len(data) - at)
+        return cls(take, what, lambda: len(data) - at, closing)
 
     def _values(self, n, dtype):
         return np.frombuffer(self.take(8 * n), dtype=dtype)
@@ -182,9 +185,9 @@ class BinaryNumbers:
         return self._values(self._count(size), np.int64)
 
     def end(self):
-        """The reply is read: its closing word must follow, and nothing after it."""
-        closing = bytes(self.take(len(REPLY_END)))
-        if closing != REPLY_END or self.unread():
+        """The record is read: its closing word must follow, and nothing after it."""
+        closing = bytes(self.take(len(self.closing)))
+        if closing != self.closing or self.unread():
             raise RecordError(f"{self.what} that does not end where its record does "
                               f"({closing!r}, {self.unread()} bytes after)")
 
@@ -266,8 +269,8 @@ class RobinRequest:
                          for key in sides))
 
     def encode(self):
-        return encode(*(array for alpha, g in zip(self.alphas, self.data)
-                        for array in (alpha, *g)))
+        return encode_binary(*(array for alpha, g in zip(self.alphas, self.data)
+                               for array in (alpha, *g)))
 
     @classmethod
     def decode(cls, numbers, components):
@@ -299,7 +302,8 @@ class TraceReply:
 
     def encode(self):
         return encode_binary(*(row for trace in self.traces for row in trace),
-                             self.seconds, self.back_seconds, self.descent, self.shift)
+                             self.seconds, self.back_seconds, self.descent,
+                             self.shift) + REPLY_END
 
     @classmethod
     def decode(cls, numbers, shape):
@@ -334,7 +338,7 @@ class MapReply:
     def encode(self):
         responses = [np.append(self.constant, self.descent0)]
         responses += [np.append(column, d) for column, d in zip(self.matrix.T, self.descent_row)]
-        return encode_binary(*responses, self.seconds, self.back_seconds)
+        return encode_binary(*responses, self.seconds, self.back_seconds) + REPLY_END
 
     @classmethod
     def decode(cls, numbers, unknowns):
@@ -355,7 +359,7 @@ class OutputRequest:
     fields: bool
 
     def encode(self):
-        return encode(self.fields)
+        return encode_binary(self.fields)
 
     @classmethod
     def decode(cls, numbers):
@@ -394,7 +398,7 @@ class BodyOutput:
         return encode_binary(len(self.columns[BODY_COLUMNS[0]]), len(self.cells), len(labels),
                              *(self.columns[name] for name in BODY_COLUMNS),
                              np.asarray(self.cells, dtype=np.int64),
-                             np.array(labels, dtype=np.int64), r1, r2)
+                             np.array(labels, dtype=np.int64), r1, r2) + REPLY_END
 
     @classmethod
     def decode(cls, numbers):
@@ -416,7 +420,8 @@ class ShellOutput:
     columns: dict             # name -> (rows,), in the record's order
 
     def encode(self):
-        return encode_binary(len(next(iter(self.columns.values()))), *self.columns.values())
+        return (encode_binary(len(next(iter(self.columns.values()))), *self.columns.values())
+                + REPLY_END)
 
     @classmethod
     def decode(cls, numbers, names=SHELL_COLUMNS):

@@ -20,7 +20,7 @@ import time
 
 from orchestrate.workers import freefem
 from orchestrate.workers.children import die_with_parent
-from orchestrate.workers.exchange import BinaryNumbers, Command, RecordError
+from orchestrate.workers.exchange import BinaryNumbers, Command, RecordError, encode_binary
 from orchestrate.errors import SystemFailure
 
 # Workers run side by side, one per core. FreeFEM links OpenMP, whose idle threads spin:
@@ -105,8 +105,8 @@ class Worker:
 
     def send(self, command, record=None):
         """Write one request: the command's number, then its record (exchange.py)."""
-        text = f"{int(command)}\n" + (record.encode() if record is not None else "")
-        self._write(text.encode())
+        self._write(encode_binary(int(command))
+                    + (record.encode() if record is not None else b""))
         self._replies_owed += 1
 
     def receive(self, decode, *sizes):
@@ -139,7 +139,7 @@ class Worker:
             self.kill()
         elif self.process is not None and self.process.poll() is None:
             try:
-                self._write(f"{int(Command.STOP)}\n".encode(), timeout=grace)
+                self._write(encode_binary(int(Command.STOP)), timeout=grace)
             except (WorkerError, OSError):
                 pass
 

@@ -119,6 +119,12 @@ def test_qr_updates_are_factorisations():
     assert np.allclose(q @ r, np.delete(a, 2, axis=1), atol=1e-12)
     assert np.allclose(q.T @ q, np.eye(5), atol=1e-12) and np.allclose(np.tril(r, -1), 0.0)
     assert prepend_column(q, r, a[:, 1] + a[:, 3]) is None       # in the span: anew
+    square = rng.standard_normal((6, 6))                          # as many columns as rows
+    q, r = np.linalg.qr(square)
+    assert prepend_column(q, r, a[:6, 0]) is None
+    q, r = delete_column(q, r, 4)                                 # economic again
+    assert q.shape == (6, 5) and r.shape == (5, 5)
+    assert np.allclose(q @ r, np.delete(square, 4, axis=1), atol=1e-12)
 
 
 def test_the_answer_errors_are_exact_once_the_history_spans_the_map():

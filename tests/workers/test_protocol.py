@@ -2,7 +2,7 @@
 orchestrate/workers/exchange.py, encoded in Python, read by FreeFEM with
 freefem/exchange.idp's macros and written back with the same macros
 (tests/forms/freefem/exchange_round_trip.edp), decodes equal to what was sent, to the
-last bit: the driver's records as text, the replies in binary. In between FreeFEM marks every field by its name (MARKS: a factor of its own,
+last bit: the files a worker reads as text, what the FIFOs carry in binary. In between FreeFEM marks every field by its name (MARKS: a factor of its own,
 a flag flipped, an integer shifted), so a field that one side reads into another's place
 fails the test, as do a count, a size or an order that differ. A shell's numbers also
 pass through shell.edp's way of reading them, its command-line flags."""
@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 
 from orchestrate.workers.exchange import (BODY_COLUMNS, BODY_PLACE, BODY_TRACE_FIELDS,
-                                          CELL_NODES, SHELL_COLUMNS, SHELL_PLACE, BodyOutput,
-                                          BinaryNumbers, MapReply, Numbers, OutputRequest,
-                                          RecordError,
-                                          RobinRequest, ShellNumbers, ShellOutput, SideArrays,
-                                          Sides, TraceReply)
+                                          CELL_NODES, REPLY_END, SHELL_COLUMNS, SHELL_PLACE,
+                                          BinaryNumbers, BodyOutput, MapReply, Numbers,
+                                          OutputRequest, RecordError, RobinRequest,
+                                          ShellNumbers, ShellOutput, SideArrays, Sides,
+                                          TraceReply)
 
 SHELL_FIELDS = 4                 # a shell with thickness stretch: v, w, gamma, epsilon
 BODY_SIDES = ((1, 5), (2, 7))    # (components, points): a contact's side, a bond's
@@ -84,11 +84,15 @@ def _marked_side(side):
                       tuple(tuple(8 * c for c in component) for component in side.coefficients))
 
 
-REPLIES = ("trace_reply", "map_reply", "body_output", "shell_output")   # in binary
+REQUESTS = ("robin_request", "output_request")                            # in binary
+REPLIES = ("trace_reply", "map_reply", "body_output", "shell_output")     # the same, closed
+BINARY = REQUESTS + REPLIES                                               # by "end"
 
 
-def _decode(name, data):
-    numbers = (BinaryNumbers.of_bytes(data, name) if name in REPLIES
+def _decode(name, data, closing=REPLY_END):
+    """``closing``: the word after a binary record (FreeFEM closes every record it writes
+    back as a reply; a request as sent has none)."""
+    numbers = (BinaryNumbers.of_bytes(data, name, closing) if name in BINARY
                else Numbers.parse(data, name))
     decoders = {
         "body.sides": lambda n: Sides.decode(n, len(BODY_PLACE), len(BODY_TRACE_FIELDS)),
@@ -134,8 +138,8 @@ def records():
 def test_every_record_comes_back_from_freefem_equal(run_freefem, tmp_path, records):
     for name, record in records.items():
         data = record.encode()
-        assert isinstance(data, bytes) == (name in REPLIES), name
-        (tmp_path / name).write_bytes(data if name in REPLIES else data.encode())
+        assert isinstance(data, bytes) == (name in BINARY), name
+        (tmp_path / name).write_bytes(data if name in BINARY else data.encode())
     numbers = records["shell_numbers"]
     run_freefem("exchange_round_trip.edp", "-dir", tmp_path, "-fields", SHELL_FIELDS,
                 *numbers.arguments())
@@ -147,7 +151,8 @@ def test_every_record_comes_back_from_freefem_equal(run_freefem, tmp_path, recor
 
 def test_every_record_decodes_its_own_encoding(records):
     for name, record in records.items():
-        _same(_decode(name, record.encode()), record, name)
+        _same(_decode(name, record.encode(), b"" if name in REQUESTS else REPLY_END),
+              record, name)
 
 
 def _first_half(text):
@@ -160,9 +165,9 @@ def _first_half(text):
                                           (lambda text: text + " 1.0", "unexpected values"),
                                           (lambda text: text.replace("\n", " x ", 1),
                                            "not numbers")])
-def test_a_request_cut_short_or_padded_is_refused(records, cut, message):
+def test_a_file_cut_short_or_padded_is_refused(records, cut, message):
     with pytest.raises(RecordError, match=message):
-        _decode("robin_request", cut(records["robin_request"].encode()))
+        _decode("body.sides", cut(records["body.sides"].encode()))
 
 
 def _recounted(data):
