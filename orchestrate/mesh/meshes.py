@@ -24,6 +24,7 @@ import signal
 import threading
 
 from orchestrate.errors import SystemFailure
+from orchestrate.files.writing import number_rows
 
 try:
     import gmsh
@@ -442,6 +443,25 @@ def _counterclockwise(points, triangles):
     return flipped
 
 
+MEDIT_CELLS = {"line": b"Edges", "triangle": b"Triangles"}
+
+
 def write_medit(mesh, path):
-    """Write a mesh in medit ``.mesh`` format, which FreeFEM's ``readmesh`` reads."""
-    meshio.write(Path(path), mesh, file_format="medit")
+    """Write a mesh in medit ``.mesh`` format, which FreeFEM's ``readmesh`` reads: its
+    vertices (label 1: FreeFEM labels a boundary by its edges), then its edges and
+    triangles, numbered from 1, each with its "medit:ref", as meshio writes the format
+    (whose writer, a Python format per line, spent 20 ms on a body of a thousand
+    vertices, a tenth of a cold run's set-up at the median)."""
+    points = np.asarray(mesh.points, dtype=float)
+    parts = [b"MeshVersionFormatted 2\nDimension 2\n\nVertices\n%d\n" % len(points),
+             number_rows([points[:, 0], points[:, 1], np.ones(len(points), dtype=int)],
+                         b" ", b"\n")]
+    for block, refs in zip(mesh.cells, mesh.cell_data["medit:ref"]):
+        if block.type not in MEDIT_CELLS:
+            raise ValueError(f"a medit mesh for FreeFEM holds no {block.type} cells")
+        parts += [b"\n%s\n%d\n" % (MEDIT_CELLS[block.type], len(block.data)),
+                  number_rows([*(np.asarray(block.data) + 1).T, np.asarray(refs)],
+                              b" ", b"\n")]
+    parts.append(b"\nEnd\n")
+    with open(path, "wb") as out:
+        out.write(b"".join(parts))

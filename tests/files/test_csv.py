@@ -46,3 +46,4 @@ def test_non_finite_numbers_and_other_values_are_written_as_the_csv_module_does(
 
 def test_an_empty_table_is_its_header():
     assert csv_bytes({"a": np.zeros(0), "b": np.zeros(0)}) == b"a,b\r\n"
+    assert csv_bytes({"n": np.zeros(0, dtype=int), "x": np.zeros(0)}) == b"n,x\r\n"
