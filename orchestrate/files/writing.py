@@ -102,7 +102,8 @@ def number_rows(values, separator=b",", newline=b"\r\n"):
     columns = [v.astype(float if v.dtype.kind == "f" else np.int64) for v in values]
     if len({v.dtype for v in columns}) == 1:
         text = orjson.dumps(np.column_stack(columns), option=orjson.OPT_SERIALIZE_NUMPY)
-        return text[2:-2].replace(b"],[", newline).replace(b",", separator) + newline
+        rows = text[2:-2].replace(b"],[", newline)
+        return (rows if separator == b"," else rows.replace(b",", separator)) + newline
     texts = [orjson.dumps(v, option=orjson.OPT_SERIALIZE_NUMPY)[1:-1].split(b",")
              for v in columns]
     return b"".join(separator.join(row) + newline for row in zip(*texts))

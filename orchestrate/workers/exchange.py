@@ -97,13 +97,6 @@ class Numbers:
         self.at += n
         return self.values[self.at - n:self.at]
 
-    def integers(self, size=None):
-        """The next count-first array of integers; ``size``: the length it must have."""
-        values = self.array(size)
-        if not np.all(values == np.round(values)):
-            raise RecordError(f"{self.what} with a fraction where integers are due")
-        return values.astype(np.int64)
-
     def end(self):
         """The record is read: nothing may follow."""
         if self.at != len(self.values):
@@ -129,6 +122,11 @@ def encode_binary(*values):
             kind = np.int64 if array.dtype.kind in "biu" else np.float64
             parts += [np.int64(len(array)).tobytes(), array.astype(kind).tobytes()]
     return b"".join(parts)
+
+
+def encode_reply(*values):
+    """A reply's bytes: its record (encode_binary), then its closing word."""
+    return encode_binary(*values) + REPLY_END
 
 
 class BinaryNumbers:
@@ -301,9 +299,8 @@ class TraceReply:
     shift: float = 0.0
 
     def encode(self):
-        return encode_binary(*(row for trace in self.traces for row in trace),
-                             self.seconds, self.back_seconds, self.descent,
-                             self.shift) + REPLY_END
+        return encode_reply(*(row for trace in self.traces for row in trace),
+                            self.seconds, self.back_seconds, self.descent, self.shift)
 
     @classmethod
     def decode(cls, numbers, shape):
@@ -338,7 +335,7 @@ class MapReply:
     def encode(self):
         responses = [np.append(self.constant, self.descent0)]
         responses += [np.append(column, d) for column, d in zip(self.matrix.T, self.descent_row)]
-        return encode_binary(*responses, self.seconds, self.back_seconds) + REPLY_END
+        return encode_reply(*responses, self.seconds, self.back_seconds)
 
     @classmethod
     def decode(cls, numbers, unknowns):
@@ -395,10 +392,10 @@ class BodyOutput:
         labels = list(self.reactions)
         r1, r2 = (np.array([self.reactions[label][k] for label in labels], dtype=float)
                   for k in (0, 1))
-        return encode_binary(len(self.columns[BODY_COLUMNS[0]]), len(self.cells), len(labels),
-                             *(self.columns[name] for name in BODY_COLUMNS),
-                             np.asarray(self.cells, dtype=np.int64),
-                             np.array(labels, dtype=np.int64), r1, r2) + REPLY_END
+        return encode_reply(len(self.columns[BODY_COLUMNS[0]]), len(self.cells), len(labels),
+                            *(self.columns[name] for name in BODY_COLUMNS),
+                            np.asarray(self.cells, dtype=np.int64),
+                            np.array(labels, dtype=np.int64), r1, r2)
 
     @classmethod
     def decode(cls, numbers):
@@ -420,8 +417,7 @@ class ShellOutput:
     columns: dict             # name -> (rows,), in the record's order
 
     def encode(self):
-        return (encode_binary(len(next(iter(self.columns.values()))), *self.columns.values())
-                + REPLY_END)
+        return encode_reply(len(next(iter(self.columns.values()))), *self.columns.values())
 
     @classmethod
     def decode(cls, numbers, names=SHELL_COLUMNS):

@@ -187,8 +187,8 @@ class Subdomains:
     stands in for its solves while the Robin coefficients are the map's (that loop's
     never change). ``inner_solve``: with "direct", every new worker gives its map too,
     and with every map known the loop solves each contact set's fixed point directly
-    (robin_maps); "auto" does so where the maps pay (_maps_pay); "iterate" never, nor "auto" where the run's strategy
-    planned to iterate (``iterate``). On a mesh fine enough for two levels, "auto" and
+    (robin_maps); "auto" does so where the maps pay (_maps_pay); "iterate" never, nor
+    "auto" where the run's strategy planned to iterate (``iterate``). On a mesh fine enough for two levels, "auto" and
     "two-level" use no map at all, nor does a fresh process per solve. ``workers``: the
     run's workers and their subdomains (Strategy.workers), by default each subdomain its
     own; a worker of several answers for all their sides, in their order."""

@@ -1,9 +1,9 @@
 """Persistent FreeFEM workers that answer requests through FIFOs.
 
 A worker script (freefem/body.edp, freefem/shell.edp) assembles and factorises once,
-replies that it is ready, then loops: read a request, solve, reply; requests and replies are the
-records of orchestrate/workers/exchange.py. The driver keeps both FIFOs
-open read-write for the worker's whole life, so that the worker's opens never block
+replies that it is ready, then loops: read a request, solve, reply; requests and replies
+are the records of orchestrate/workers/exchange.py. The driver keeps both FIFOs open
+read-write for the worker's whole life, so that the worker's opens never block
 and a reply can be awaited with a timeout while checking that the worker is alive. A
 worker that dies, or says nothing for ``timeout`` seconds, raises ``WorkerError`` with
 the end of its log.

@@ -2,10 +2,11 @@
 orchestrate/workers/exchange.py, encoded in Python, read by FreeFEM with
 freefem/exchange.idp's macros and written back with the same macros
 (tests/forms/freefem/exchange_round_trip.edp), decodes equal to what was sent, to the
-last bit: the files a worker reads as text, what the FIFOs carry in binary. In between FreeFEM marks every field by its name (MARKS: a factor of its own,
-a flag flipped, an integer shifted), so a field that one side reads into another's place
-fails the test, as do a count, a size or an order that differ. A shell's numbers also
-pass through shell.edp's way of reading them, its command-line flags."""
+last bit: the files a worker reads as text, what the FIFOs carry in binary. In between
+FreeFEM marks every field by its name (MARKS: a factor of its own, a flag flipped, an
+integer shifted), so a field that one side reads into another's place fails the test,
+as do a count, a size or an order that differ. A shell's numbers also pass through
+shell.edp's way of reading them, its command-line flags."""
 
 from dataclasses import replace
 
