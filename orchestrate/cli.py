@@ -30,6 +30,9 @@ from orchestrate.model.scene import (BONDS, FORCE_BALANCES, INNER_SOLVES, KNOB_R
                                      WORKERS, Settings)
 from orchestrate.model.scene_file import SETTINGS_LENGTHS, SHORTHANDS, scene_and_settings
 
+# The contact's elements as meshed are reported where they are this much finer than sized
+FINER_THAN_SIZED = 0.8
+
 EXIT_STATUSES = """exit status:
   0    converged
   1    not converged (the report is in OUT/summary.json)
@@ -374,10 +377,28 @@ def _plot_sweep(args):
     return EXIT_CONVERGED
 
 
+def mesh_line(summary):
+    """The run's interface mesh in a line: as sized, and what each contact zone got as
+    meshed where that is finer (a thin 2D coating's cells at the contact's edges)."""
+    length = summary["units"]["length"]
+    element, far = summary["interface_element_size"], summary["interface_element_size_far"]
+    line = f"mesh: interface elements of {element:.4g} {length}" + (
+        f" at the contact, graded to {far:.4g} {length} away from it"
+        if far > element * (1 + 1e-9) else "")
+    across = ", ".join(f"{n:.3g}" for n in summary["elements_across_contact"])
+    line += f"; {across} across the contact zones"
+    meshed = summary["contact_element_size"]
+    if any(size < FINER_THAN_SIZED * element for size in meshed):
+        sizes = ", ".join(f"{size:.4g}" for size in meshed)
+        line += (f", of {sizes} {length} (the median: a thin 2D coating refines its face "
+                 "at the contact's edges)")
+    return line
+
+
 def _solve(args):
     try:
+        scene, settings = scene_from_arguments(args)    # bad input refused before the solver loads
         from orchestrate.run.solve import solve         # loads gmsh: may fail for want of memory
-        scene, settings = scene_from_arguments(args)
         summary = solve(scene, settings, args.out, None if args.quiet else _progress,
                         overwrite=args.overwrite, strict=args.strict)
     except (ParameterError, FreeFemMissing) as error:
@@ -432,12 +453,7 @@ def _solve(args):
             f"stamp's shift {summary['stamp_shift']:.4e} {units['length']}")
     elif scene.sliding and summary.get("tangential_force"):
         _say(f"sliding: friction force {summary['tangential_force']:.4e} {units['force']}")
-    element, far = summary["interface_element_size"], summary["interface_element_size_far"]
-    across = ", ".join(f"{n:.3g}" for n in summary["elements_across_contact"])
-    _say(f"mesh: interface elements of {element:.4g} {units['length']}"
-         + (f" at the contact, graded to {far:.4g} {units['length']} away from it"
-            if far > element * (1 + 1e-9) else "")
-         + f"; {across} across the contact zones")
+    _say(mesh_line(summary))
     for warning in summary["warnings"]:
         print(f"warning ({warning['code']}): {warning['message']}", file=sys.stderr)
     if summary["warnings"] and args.strict:

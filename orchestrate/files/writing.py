@@ -10,7 +10,6 @@ import json
 import os
 from pathlib import Path
 
-import meshio
 import numpy as np
 import orjson
 
@@ -53,6 +52,7 @@ def write_bytes(path, data):
 def _write_vtu(path, mesh):
     """Binary, the arrays' own precision, not compressed: zlib took a third of the time
     a run spent writing its files, to make them less than half smaller."""
+    import meshio      # loaded where a VTU is written: a refusal needs none (0.1 s)
     meshio.write(path, mesh, file_format="vtu", binary=True, compression=None)
 
 

@@ -58,6 +58,7 @@ KINDS = {
     "displacement": LENGTH, "descent": LENGTH, "contact_half_width": LENGTH, "depth": LENGTH,
     "contact_half_width_estimate": LENGTH, "contact_zones": LENGTH, "stick_zones": LENGTH,
     "interface_element_size": LENGTH, "interface_element_size_far": LENGTH,
+    "contact_element_size": LENGTH,
     # stresses
     "sigma_n": STRESS, "sigma_t": STRESS, "sigma_eq": STRESS, "s11": STRESS, "s22": STRESS,
     "s12": STRESS, "s33": STRESS, "stress": STRESS, "sigma11_top": STRESS,

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from orchestrate import solve
+from orchestrate.cli import mesh_line
 from orchestrate.mesh.discretization import FaceSpacing
 from orchestrate.model.scene import Settings
 from orchestrate.model.scene_file import scene_and_settings
@@ -103,3 +104,17 @@ def test_the_answers_at_the_contact_differ_by_its_resolution(graded_and_held, an
     13.97 and 13.87 at level 2."""
     graded, held = (_answers(run) for run in graded_and_held)
     assert graded[answer] == pytest.approx(held[answer], rel=tolerance)
+
+
+def test_the_summary_says_the_contacts_elements_as_meshed(graded_and_held):
+    """contact_element_size is the elements' length in the contact zone as meshed: on the
+    graded face the length it was sized to; with the film's cells held at twice their
+    height (2 um, one layer: 4 um wide) that width, far below the size the face asked
+    for, and the command line says so."""
+    graded, held = (run.summary for run in graded_and_held)
+    assert graded["contact_element_size"][0] == pytest.approx(
+        graded["interface_element_size"], rel=0.1)
+    assert held["contact_element_size"][0] == pytest.approx(0.004, rel=0.05)
+    assert held["interface_element_size"] > 2.5 * held["contact_element_size"][0]
+    assert "of 0.004" in mesh_line(held) and "refines its face" in mesh_line(held)
+    assert "refines" not in mesh_line(graded)
