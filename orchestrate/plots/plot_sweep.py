@@ -178,9 +178,13 @@ def split_columns(table, x, by):
     return split
 
 
-def _label(columns, values):
-    return ", ".join(f"{c}={v:g}" if isinstance(v, float) else f"{c}={v}"
-                     for c, v in zip(columns, values))
+def _label(table, columns, values):
+    """A line's label: each column's value, with its unit (``load.force=5 N``)."""
+    def one(column, value):
+        unit = column_unit(table, column)
+        text = f"{value:g}" if isinstance(value, float) else f"{value}"
+        return f"{column}={text}" + (f" {unit}" if unit else "")
+    return ", ".join(one(column, value) for column, value in zip(columns, values))
 
 
 def plot_sweep(sweep_dir, y, x, by=None, where=(), out=None, log_x=False, log_y=False):
@@ -241,7 +245,7 @@ def draw(table, y, x, line_keys, title, log_x=False, log_y=False, x_label=None,
         rows = rows.sort_values(x, kind="stable") if numeric_x else rows
         axes.plot(rows[x] if numeric_x else rows[x].astype(str), rows[y], linestyle=line,
                   marker=marker, markersize=4, color=colour,
-                  label=_label(line_keys, values) if line_keys else None)
+                  label=_label(table, line_keys, values) if line_keys else None)
         lines += 1
     if log_x:
         axes.set_xscale("log")

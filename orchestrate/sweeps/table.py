@@ -49,6 +49,7 @@ def gather(sweep_dir, runs):
             scene = scene_from_dict(summary["scene"])
             row.update(shorthand_values(scene))
             row.update(_flatten(to_dict(scene)))
+            row.update(_every_patch_values(values, row))
         # a run that could not run has no settings: its values over the defaults
         settings = summary.get("settings") or {f.name: values.get(f.name, f.default)
                                                for f in fields(Settings)}
@@ -58,11 +59,23 @@ def gather(sweep_dir, runs):
         row["started_from"] = Path(summary["started_from"]).name if summary.get(
             "started_from") else None
         row.update(_model_choice_columns(summary.get("model_choice")))
+        # the forces' unit, which the scene's units leave to its kind: per unit width in
+        # plane strain (N/mm), whole on a body of revolution (N)
+        row["units.force"] = (summary.get("units") or {}).get("force")
         row["warnings"] = "; ".join(w["code"] for w in summary.get("warnings") or ())
         row["forms_digest"] = (summary.get("provenance") or {}).get("forms_digest")
         row.update(_answer_columns(summary.get("answers")))
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _every_patch_values(values, row):
+    """A swept key of every patch (coating.E) as the scene holds it, a number in the
+    scene's units, as every other swept key's column is (the scene's own, or a setting's):
+    the first patch's (coating[1].E), which the key set to the same value as the others.
+    The text given ("300 GPa") stays in the run's folder name."""
+    return {key: row[f"coating[1].{key[len('coating.'):]}"] for key in values
+            if key.startswith("coating.") and f"coating[1].{key[len('coating.'):]}" in row}
 
 
 def _answer_columns(answers):

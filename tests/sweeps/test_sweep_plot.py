@@ -17,6 +17,7 @@ import pandas as pd
 import pytest
 
 from orchestrate.errors import ParameterError
+from orchestrate.model.units import force_name
 from orchestrate.plots.plot import plot_run
 from orchestrate.plots import plot_sweep as plot_sweep_module
 from orchestrate.plots.plot_sweep import axis_label, plot_sweep, read_runs, select, split_columns
@@ -170,6 +171,7 @@ def _in_units(table, tmp_path, length="mm", stress="MPa"):
     the labels are under test); return its folder."""
     table = table.copy()
     table["units.length"], table["units.stress"] = length, stress
+    table["units.force"] = force_name(stress, length)    # a plane-strain run's
     table.to_csv(tmp_path / "runs.csv", index=False)
     return tmp_path
 
