@@ -241,6 +241,10 @@ def _set(scene, key, value):
         coatings[number - 1] = _copy(coatings[number - 1], **{name: value})
         return _copy(scene, coatings=tuple(coatings))
     table, _, name = key.partition(".")
+    if key in {f.name for f in fields(Settings)}:
+        raise ParameterError(f"{key!r} is a solver setting, not a scene key: give it as "
+                             f"one (settings={{{key!r}: ...}} from Python, [settings] in a "
+                             "scene file, a flag on the command line)", key)
     if table not in _TABLES or not name:
         close = difflib.get_close_matches(table, [*_TABLES, *_TOP_LEVEL_VALUES], n=1)
         hint = f"did you mean {close[0]!r}? " if close else ""

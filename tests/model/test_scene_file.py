@@ -282,6 +282,8 @@ def test_a_load_path_s_steps_take_units_and_the_load_s_own_values(tmp_path):
     ("frction", ["did you mean 'friction'?"]),
     ("coating.thicknes", ["did you mean 'thickness'?", "allowed: start, end"]),
     ("coating[1].modulus", ["'coating[1].modulus'", "allowed:"]),
+    # a solver setting among the scene's overrides (orchestrate.solve's overrides=)
+    ("eps_u", ["'eps_u' is a solver setting, not a scene key", "settings={'eps_u': ...}"]),
 ])
 def test_a_mistyped_override_names_the_keys_there_are(key, words):
     from orchestrate.model.scene_file import apply_overrides
