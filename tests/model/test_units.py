@@ -275,3 +275,32 @@ def test_a_modulus_is_written_in_the_prefix_that_keeps_it_below_a_thousand(value
         registry = unit_registry()
         assert registry.Quantity(float(number), unit).to(stress).magnitude \
             == pytest.approx(value)
+
+
+# Values a scene file may give, in units across pint's definitions (SI prefixes, US units)
+GIVEN = ["20 um", "450 GPa", "0.8 kN/mm", "5 N", "3 ksi", "0.01 in", "12 psi", "2 mm^2"]
+
+
+def _magnitudes(registry):
+    return [registry.Quantity(text).to_base_units().magnitude for text in GIVEN]
+
+
+def test_the_registry_from_pints_cache_reads_units_as_one_from_its_definitions(tmp_path):
+    """unit_registry takes pint's parsed definitions from its cache folder (written by the
+    first process, read by the next): the same units either way, and a cache that cannot
+    be read (a file half-written by a process starting beside it) falls back to the
+    definitions themselves."""
+    import pint
+    from orchestrate.model import units
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(units, "PINT_CACHE", str(tmp_path))
+        fresh = _magnitudes(pint.UnitRegistry())
+        for _ in range(2):                  # the first writes the cache, the second reads it
+            patch.setattr(units, "_registry", None)
+            assert _magnitudes(units.unit_registry()) == fresh
+        pickles = list(tmp_path.glob("*.pickle"))
+        assert pickles                      # the cache was written where it was pointed
+        for cached in pickles:
+            cached.write_bytes(cached.read_bytes()[:20])      # cut short
+        patch.setattr(units, "_registry", None)
+        assert _magnitudes(units.unit_registry()) == fresh
