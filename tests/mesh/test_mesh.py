@@ -139,3 +139,28 @@ def test_a_body_is_meshed_once_per_plan(tmp_path, monkeypatch):
     other = dataclasses.replace(base, max_size=0.99 * base.max_size)   # no test meshed it
     body_mesh(other)
     assert calls == [other]
+
+
+@pytest.mark.parametrize("dimensions", [1, 2])
+def test_points_snap_onto_the_nearest_target_within_reach_as_a_search_of_all_finds(dimensions):
+    """meshes._snap (a face's nodes put exactly where the interfaces have them) against
+    every pair's distance: targets on a curve, some with equal x1 (a patch's step),
+    points at, near and far from them."""
+    from orchestrate.mesh.meshes import _snap
+    rng = np.random.default_rng(7)
+    x = np.sort(rng.uniform(-3.0, 3.0, 40))
+    targets = np.column_stack([x, 0.1 * x ** 2])[:, :dimensions]
+    targets = np.vstack([targets, targets[5] + [0.0, 0.01][:dimensions]])   # a step
+    within = 1e-6
+    near = targets[rng.integers(0, len(targets), 60)] + rng.normal(0, within / 3,
+                                                                   (60, dimensions))
+    points = np.vstack([near, rng.uniform(-3.0, 3.0, (60, dimensions))])
+    which = np.arange(len(points))
+    expected = points.copy()
+    distance = np.linalg.norm(points[:, None, :] - targets[None, :, :], axis=2)
+    nearest = np.argmin(distance, axis=1)
+    close = distance[which, nearest] < within
+    expected[close] = targets[nearest[close]]
+    assert close.sum() > 40                     # most near points are in reach
+    _snap(points, which, targets, within)
+    np.testing.assert_array_equal(points, expected)
