@@ -433,7 +433,7 @@ def _solve(args):
         else:
             _say(f"coating[{patch['patch']}]: model auto chose {patch['model']} ({estimate})")
     units = summary["units"]
-    for line in describe(summary["answers"], units):
+    for line in describe(summary["answers"], units, scene.axisymmetric):
         _say(line)
     descent = (f", descent {summary['descent']:.4e} {units['length']}"
                if scene.load.force is not None else "")

@@ -204,16 +204,18 @@ def scene_title(summary, scene, units):
     return f"{first}\n{patches}{view}"
 
 
-def _answer_marks(summary, interface, units):
+def _answer_marks(summary, interface, units, axisymmetric=False):
     """(x1, y, marker, label) of the peak contact pressure and of the bond's largest
-    peel and shear away from the patches' ends (the summary's answers)."""
+    peel and shear away from the patches' ends (the summary's answers); a position is
+    x1, or r on a body of revolution."""
     answers = summary.get("answers")
     if not answers:
         return []
     stress, length = units["stress"], units["length"]
+    along = "$r$" if axisymmetric else "$x_1$"
 
     def where(extreme):
-        return f"{extreme['value']:.4g} {stress} at $x_1$ = {extreme['x1']:.3g} {length}"
+        return f"{extreme['value']:.4g} {stress} at {along} = {extreme['x1']:.3g} {length}"
     marks = []
     peak = answers["contact"].get("peak_pressure")
     if peak:
@@ -274,7 +276,7 @@ def stresses_figure(run_dir):
         axes.plot(part.x1, part.sigma_t, ":", color="C2",
                   label=r"bond $\sigma_t$" if k == 0 else None)
         curves += [(part.x1, part.sigma_n), (part.x1, part.sigma_t)]
-    for x1, y, marker, label in _answer_marks(summary, interface, units):
+    for x1, y, marker, label in _answer_marks(summary, interface, units, scene.axisymmetric):
         in_view = limits[0] <= x1 <= limits[1]     # else its legend entry alone
         axes.plot([x1] if in_view else [], [y] if in_view else [], marker, color="k",
                   markersize=8 if marker == "*" else 5, linestyle="none", zorder=5,

@@ -223,13 +223,16 @@ def shell_answers(scene, coating, fields):
                    fields["x1"], fields["x2"])
 
 
-def describe(answers, units):
-    """The answers as lines for a person, with the units of the summary's "units"."""
+def describe(answers, units, axisymmetric=False):
+    """The answers as lines for a person, with the units of the summary's "units"; a
+    position along the face is x1, or r on a body of revolution."""
     stress, length = units["stress"], units["length"]
+    along = "r" if axisymmetric else "x1"
 
     def where(extreme):
         depth = (f", {extreme['depth']:.4g} {length} deep" if "depth" in extreme else "")
-        return f"{extreme['value']:.4g} {stress} at x1 = {extreme['x1']:.4g} {length}{depth}"
+        return (f"{extreme['value']:.4g} {stress} at {along} = {extreme['x1']:.4g} "
+                f"{length}{depth}")
     lines = []
     for group, found in (("", {"contact": answers["contact"]}), ("bonds", answers["bonds"]),
                          ("coatings", answers["coatings"]),

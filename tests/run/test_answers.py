@@ -131,3 +131,18 @@ def test_the_2d_coatings_answers_match_stresses_from_its_displacements(coating_2
     squeezed = min(mean[n][1] for n in bottom)
     compression = summary["answers"]["bonds"]["bond-coating1"]["compression"]["value"]
     assert compression == pytest.approx(squeezed, rel=0.02)
+
+
+def test_a_body_of_revolution_says_its_positions_as_r():
+    """The command line's answers and the plot's marks name a position along the face r
+    on a body of revolution (its axis is r = 0), x1 in plane strain."""
+    from orchestrate.plots.plot import _answer_marks
+    from orchestrate.run.answers import describe
+    answers = {"contact": {"peak_pressure": {"value": 3825.0, "x1": 0.0, "x2": 1.0}},
+               "bonds": {}, "coatings": {}}
+    units = {"stress": "MPa", "length": "mm"}
+    assert describe(answers, units, axisymmetric=True) == [
+        "contact: peak pressure 3825 MPa at r = 0 mm"]
+    assert describe(answers, units) == ["contact: peak pressure 3825 MPa at x1 = 0 mm"]
+    (mark,) = _answer_marks({"answers": answers}, None, units, axisymmetric=True)
+    assert mark[3] == "peak pressure 3825 MPa at $r$ = 0 mm"
