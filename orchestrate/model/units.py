@@ -131,7 +131,7 @@ def unit_registry():
         import pint
         try:
             _registry = pint.UnitRegistry(cache_folder=PINT_CACHE)
-        except Exception:                       # noqa: BLE001 (any fault of the cache)
+        except Exception:      # any fault of the cache: a cut-short file, an unwritable folder
             _registry = pint.UnitRegistry()
     return _registry
 
