@@ -397,7 +397,7 @@ def mesh_line(summary):
 
 def _solve(args):
     try:
-        scene, settings = scene_from_arguments(args)    # bad input refused before the solver loads
+        scene, settings = scene_from_arguments(args)    # refused before the solver loads
         from orchestrate.run.solve import solve         # loads gmsh: may fail for want of memory
         summary = solve(scene, settings, args.out, None if args.quiet else _progress,
                         overwrite=args.overwrite, strict=args.strict)
