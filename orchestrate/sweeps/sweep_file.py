@@ -102,6 +102,7 @@ def check_points(points, scene_dir=".", stream=sys.stderr):
 
     problems = []
     last_report = time.monotonic()
+    written = {}        # (keys, scene, settings) -> the first point that gives them
     for number, values in enumerate(points, start=1):
         if time.monotonic() - last_report > CHECK_REPORT_SECONDS:
             stream.write(f"checking the sweep's points: {number - 1} of {len(points)}\n")
@@ -112,6 +113,15 @@ def check_points(points, scene_dir=".", stream=sys.stderr):
             prepare(scene, settings)
         except (ParameterError, TypeError, ValueError) as error:
             problems.append(f"point {number} {values}: {error}")
+            continue
+        # the same keys set to the same run, written otherwise ("2 um" and 0.002 in mm):
+        # two folders of one run. A default set in another grid (mesh_level = 1 beside
+        # E2 = 1) is another point, as the sweep file says.
+        first = written.setdefault((tuple(sorted(values)), repr(scene), repr(settings)),
+                                   number)
+        if first != number and values != points[first - 1]:
+            problems.append(f"point {number} {values}: the same run as point {first} "
+                            f"{points[first - 1]}, its values written otherwise")
     if problems:
         shown = problems[:10] + ([f"... and {len(problems) - 10} more"] if len(problems) > 10 else [])
         raise ParameterError(f"{len(problems)} of {len(points)} points refused:\n  "

@@ -24,6 +24,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from orchestrate.errors import ParameterError
+from orchestrate.model.scene_file import SCENES_DIR
 from orchestrate.sweeps import load_sweep, named_points, run_sweep
 from tests.conftest import PROJECT_DIR, processes_mentioning
 
@@ -212,6 +214,23 @@ def test_a_bad_point_refuses_the_sweep_before_any_run(tmp_path):
     assert "2 of 3 points refused" in result.stderr
     assert "coating[1].thickness = 9.0" in result.stderr and "robin = 5000.0" in result.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_one_run_written_two_ways_is_refused_and_a_default_set_elsewhere_is_not():
+    """A grid listing one value in two units ("2 um" and 0.002 in a mm scene) would run
+    the same scene twice into two folders: refused, naming both points. A default set
+    explicitly in another grid (mesh_level = 1 beside E2 = 1, as make stability's
+    grids do) is a point of its own."""
+    from orchestrate.sweeps.sweep_file import check_points
+    ball = {"scene": str(SCENES_DIR / "ball_mm.toml")}
+    with pytest.raises(ParameterError) as refused:
+        check_points([{**ball, "coating.thickness": "2 um"},
+                      {**ball, "coating.thickness": 0.002},
+                      {**ball, "coating.thickness": "3 um"}], stream=io.StringIO())
+    assert "1 of 3 points refused" in str(refused.value)
+    assert ("point 2" in str(refused.value) and "the same run as point 1" in str(refused.value)
+            and "'2 um'" in str(refused.value))
+    check_points([{"h2": 0.5, "E2": 1.0}, {"h2": 0.5, "mesh_level": 1}], stream=io.StringIO())
 
 
 def test_a_bad_sweep_file_is_refused_naming_the_parameter(tmp_path):
