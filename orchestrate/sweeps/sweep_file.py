@@ -102,7 +102,7 @@ def check_points(points, scene_dir=".", stream=sys.stderr):
 
     problems = []
     last_report = time.monotonic()
-    written = {}        # (keys, scene, settings) -> the first point that gives them
+    first_of = {}       # (keys, scene, settings) -> the first point that gives them
     for number, values in enumerate(points, start=1):
         if time.monotonic() - last_report > CHECK_REPORT_SECONDS:
             stream.write(f"checking the sweep's points: {number - 1} of {len(points)}\n")
@@ -117,7 +117,7 @@ def check_points(points, scene_dir=".", stream=sys.stderr):
         # the same keys set to the same run, written otherwise ("2 um" and 0.002 in mm):
         # two folders of one run. A default set in another grid (mesh_level = 1 beside
         # E2 = 1) is another point, as the sweep file says.
-        first = written.setdefault((tuple(sorted(values)), repr(scene), repr(settings)),
+        first = first_of.setdefault((tuple(sorted(values)), repr(scene), repr(settings)),
                                    number)
         if first != number and values != points[first - 1]:
             problems.append(f"point {number} {values}: the same run as point {first} "

@@ -74,8 +74,9 @@ def _every_patch_values(values, row):
     scene's units, as every other swept key's column is (the scene's own, or a setting's):
     the first patch's (coating[1].E), which the key set to the same value as the others.
     The text given ("300 GPa") stays in the run's folder name."""
-    return {key: row[f"coating[1].{key[len('coating.'):]}"] for key in values
-            if key.startswith("coating.") and f"coating[1].{key[len('coating.'):]}" in row}
+    first = {key: "coating[1]." + key.removeprefix("coating.") for key in values
+             if key.startswith("coating.")}
+    return {key: row[column] for key, column in first.items() if column in row}
 
 
 def _answer_columns(answers):
